@@ -1,0 +1,42 @@
+#pragma once
+// The elastic energy of the soft tissue, eq. (2) without external forces: one-point quadrature
+// on linear tetrahedra, weight = rest volume. Works on full node positions x (3 x numNodes).
+#include <Eigen/Core>
+#include <Eigen/StdVector>
+#include <vector>
+
+#include "mesh/TetMesh.hpp"
+#include "physics/NeoHookean.hpp"
+
+namespace orthosim {
+
+using Matrix12d = Eigen::Matrix<double, 12, 12>;
+using Vector12d = Eigen::Matrix<double, 12, 1>;
+
+class SoftTissueEnergy {
+ public:
+  SoftTissueEnergy(const TetMesh& mesh, const NeoHookean& material);
+
+  const TetMesh& mesh() const { return mesh_; }
+  const NeoHookean& material() const { return material_; }
+  int numTets() const { return mesh_.numTets(); }
+
+  Eigen::Matrix3d deformationGradient(int e, const Eigen::Matrix3Xd& x) const;
+  // Sum over elements; +infinity as soon as any element is inverted.
+  double energy(const Eigen::Matrix3Xd& x) const;
+  // dV/dx, 3 x numNodes. Requires every det F > 0.
+  Eigen::Matrix3Xd gradient(const Eigen::Matrix3Xd& x) const;
+  double minDetF(const Eigen::Matrix3Xd& x) const;
+
+  double elementEnergy(int e, const Eigen::Matrix3Xd& x) const;
+  Vector12d elementGradient(int e, const Eigen::Matrix3Xd& x) const;
+  Matrix12d elementHessian(int e, const Eigen::Matrix3Xd& x, bool projectToPSD) const;
+
+ private:
+  const TetMesh& mesh_;
+  NeoHookean material_;
+  std::vector<Eigen::Matrix3d, Eigen::aligned_allocator<Eigen::Matrix3d>> restInverse_;  // Dm^-1
+  std::vector<double> volume_;
+};
+
+}  // namespace orthosim

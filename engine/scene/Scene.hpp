@@ -1,0 +1,72 @@
+#pragma once
+// An explicit simulation scene: tetrahedral tissue, rigid fragments with the tissue nodes bonded
+// or blended to them, fixed tissue, the surgical plan and solver settings. SceneFile.hpp reads and
+// writes its JSON form (documented in docs/scene-format.md).
+#include <Eigen/Core>
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mesh/TetMesh.hpp"
+#include "scene/RigidPose.hpp"
+
+namespace orthosim {
+
+struct FragmentSpec {
+  std::string name;
+  std::vector<int> nodes;  // tissue nodes bonded rigidly to this fragment
+  bool free = false;       // free: 6 unknown DoFs held only by tissue; else pose comes from the plan
+};
+
+// A tissue node whose position is a linear blend of fragment transforms (linear blend skinning).
+struct BlendedNode {
+  int node = -1;
+  std::vector<std::pair<int, double>> weights;  // (fragment index, weight); weights sum to 1
+};
+
+// Tissue node components held at rest position plus `displacement` times the plan's load fraction
+// (zero displacement: fixed tissue, e.g. on the skull).
+struct FixedSpec {
+  std::vector<int> nodes;
+  std::array<bool, 3> components{true, true, true};
+  Eigen::Vector3d displacement = Eigen::Vector3d::Zero();
+};
+
+// The plan for one fragment: x = c + t + R(theta) (X - c).
+struct FragmentMotion {
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();  // mm
+  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();     // axis-angle, radians
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();       // mm
+  RigidPose pose() const { return RigidPose::fromMotion(translation, rotation, center); }
+};
+
+// Auto: the exact Hessian when it is positive definite (quadratic convergence near the solution),
+// the per-element eigenvalue-projected one when the factorisation finds it is not.
+enum class HessianMode { Auto, Projected, Exact };
+
+struct SolverSettings {
+  int substeps = 0;               // 0: adaptive; N > 0: N equal substeps (refined when one fails)
+  int maxIterations = 30;         // Newton iterations per substep before it counts as failed
+  int maxRefinements = 12;        // halvings of a failing substep before the solve gives up
+  double forceTolerance = -1.0;   // N, on the reduced residual (max norm); < 0: automatic
+  double stepTolerance = -1.0;    // mm, on the Newton step (max norm); < 0: automatic
+  HessianMode hessian = HessianMode::Auto;
+};
+
+struct Scene {
+  TetMesh mesh;
+  int indexBase = 0;  // of the .node file, reused when writing results
+  double youngsModulus = 0.1;  // MPa (100 kPa)
+  double poissonRatio = 0.47;
+  std::vector<FragmentSpec> fragments;
+  std::vector<BlendedNode> blended;
+  std::vector<FixedSpec> fixed;
+  std::map<std::string, FragmentMotion> plan;  // fragment name -> motion; absent: keeps its pose
+  SolverSettings solver;
+
+  std::optional<int> fragmentIndex(const std::string& name) const;
+};
+
+}  // namespace orthosim

@@ -1,0 +1,31 @@
+#pragma once
+// Supernodal Cholesky of the reduced Newton matrix with CHOLMOD: the symbolic analysis (ordering,
+// supernodes) is done once per model, the numeric factorisation once per Newton iteration.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <memory>
+
+namespace orthosim {
+
+class CholmodFactor {
+ public:
+  CholmodFactor();
+  ~CholmodFactor();
+  CholmodFactor(const CholmodFactor&) = delete;
+  CholmodFactor& operator=(const CholmodFactor&) = delete;
+
+  // Symbolic analysis of the lower triangle `lower`; its pattern must not change afterwards.
+  void analyze(const Eigen::SparseMatrix<double>& lower);
+  // Numeric factorisation; false when the matrix is not positive definite.
+  bool factorize(const Eigen::SparseMatrix<double>& lower);
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+  bool valid() const { return factored_; }
+  void invalidate() { factored_ = false; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  bool factored_ = false;
+};
+
+}  // namespace orthosim

@@ -1,0 +1,57 @@
+#pragma once
+// A simulation model built once per scene: elastic energy, couplings, the reduced matrix pattern
+// and its symbolic factorisation. Solves (previews, plan changes) reuse it.
+#include <map>
+#include <memory>
+#include <string>
+
+#include "physics/SoftTissueEnergy.hpp"
+#include "scene/Scene.hpp"
+#include "solver/CholmodFactor.hpp"
+#include "solver/Coupling.hpp"
+#include "solver/ReducedSystem.hpp"
+
+namespace orthosim {
+
+// Boundary targets plus the centers the fragments turn about on the way there.
+struct PlanTargets {
+  BoundaryTargets boundary;
+  std::vector<Eigen::Vector3d> centers;
+};
+
+class Model {
+ public:
+  // Validates the scene (throws std::invalid_argument with the reason) and builds everything.
+  explicit Model(Scene scene);
+  Model(const Model&) = delete;
+  Model& operator=(const Model&) = delete;
+
+  const Scene& scene() const { return scene_; }
+  const SoftTissueEnergy& energy() const { return *energy_; }
+  const Coupling& coupling() const { return *coupling_; }
+  ReducedSystem& system() { return *system_; }
+  const ReducedSystem& system() const { return *system_; }
+  CholmodFactor& factor() { return factor_; }
+
+  // Length scale (mean edge length, mm) and the tolerances resolved from the scene's settings.
+  double lengthScale() const { return lengthScale_; }
+  double forceTolerance() const;
+  double stepTolerance() const;
+  double buildSeconds() const { return buildSeconds_; }
+
+  SimState restState() const { return coupling_->restState(); }
+  // The end of a plan started from `start`: planned fragments take their planned pose, the
+  // others keep the pose they have in `start`; fixed displacements are fully applied.
+  PlanTargets targetsFromPlan(const std::map<std::string, FragmentMotion>& plan, const SimState& start) const;
+
+ private:
+  Scene scene_;
+  std::unique_ptr<SoftTissueEnergy> energy_;
+  std::unique_ptr<Coupling> coupling_;
+  std::unique_ptr<ReducedSystem> system_;
+  CholmodFactor factor_;
+  double lengthScale_ = 1.0;
+  double buildSeconds_ = 0.0;
+};
+
+}  // namespace orthosim

@@ -1,0 +1,181 @@
+#include "solver/NewtonSolver.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <limits>
+
+namespace orthosim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Stopwatch {
+  double& total;
+  Clock::time_point start = Clock::now();
+  ~Stopwatch() { total += std::chrono::duration<double>(Clock::now() - start).count(); }
+};
+
+double maxNorm(const Eigen::VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
+
+class Newton {
+ public:
+  Newton(Model& model, const SolverSettings& settings, SolveTimings& timings)
+      : model_(model), coupling_(model.coupling()), settings_(settings), t_(timings) {}
+
+  SubstepReport run(const BoundaryTargets& targets, SimState& state) {
+    SubstepReport rep;
+    SimState x = state;
+    if (!predict(targets, x, rep)) return rep;
+    double lastStep = std::numeric_limits<double>::infinity();
+    double lastResidual = std::numeric_limits<double>::infinity();
+    double lastAlpha = 0.0;
+    for (int it = 0;; ++it) {
+      Eigen::Matrix3Xd g;
+      Eigen::VectorXd r;
+      {
+        Stopwatch w{t_.assembly};
+        g = model_.energy().gradient(x.x);
+        r = coupling_.reduce(g, x);
+      }
+      rep.residual = maxNorm(r);
+      if (!std::isfinite(rep.residual)) return fail(rep, "the residual is not finite");
+      if (rep.residual <= model_.forceTolerance() && lastStep <= model_.stepTolerance()) break;
+      if (it == settings_.maxIterations)
+        return fail(rep, "no convergence in " + std::to_string(it) + " Newton iterations (residual " +
+                             std::to_string(rep.residual) + " N)");
+      // In the fast-converging regime (a full step cut the residual tenfold) the Hessian barely
+      // changes: reuse the factorisation (a chord step) instead of refactoring.
+      const bool chord = model_.factor().valid() && it > 0 && lastAlpha == 1.0 && rep.residual < 0.1 * lastResidual;
+      if (!chord && !factorAt(x, g, rep.residual))
+        return fail(rep, "the reduced Hessian is singular: is every part of the tissue held?");
+      Eigen::VectorXd dz;
+      {
+        Stopwatch w{t_.solve};
+        dz = model_.factor().solve(-r);
+      }
+      ++(chord ? rep.chordIterations : rep.iterations);
+      lastAlpha = lineSearch(x, r, dz, rep.residual);
+      if (lastAlpha <= 0) return fail(rep, "the line search found no decrease of the energy");
+      lastStep = lastAlpha * maxNorm(dz);
+      lastResidual = rep.residual;
+      if (std::getenv("ORTHOSIM_TRACE"))
+        std::fprintf(stderr, "  %s %d: residual %.3e step %.3e alpha %.3g\n", chord ? "chord " : "newton", it,
+                     rep.residual, lastStep, lastAlpha);
+    }
+    rep.energy = model_.energy().energy(x.x);
+    rep.minDetF = model_.energy().minDetF(x.x);
+    rep.converged = true;
+    state = std::move(x);
+    return rep;
+  }
+
+ private:
+  SubstepReport& fail(SubstepReport& rep, const std::string& why) {
+    rep.converged = false;
+    rep.failure = why;
+    model_.factor().invalidate();
+    return rep;
+  }
+
+  // Auto mode tries the exact Hessian unless it was indefinite at a residual not much larger.
+  bool factorAt(const SimState& x, const Eigen::Matrix3Xd& g, double residual) {
+    const bool tryExact = settings_.hessian == HessianMode::Exact ||
+                          (settings_.hessian == HessianMode::Auto && residual < 0.1 * indefiniteAtResidual_);
+    if (tryExact) {
+      if (factorOnce(x, g, false)) return true;
+      indefiniteAtResidual_ = residual;
+      if (settings_.hessian == HessianMode::Exact) return false;
+    }
+    ++t_.projectedFactorizations;
+    return factorOnce(x, g, true);
+  }
+
+  bool factorOnce(const SimState& x, const Eigen::Matrix3Xd& g, bool project) {
+    {
+      Stopwatch w{t_.assembly};
+      model_.system().assemble(x, g, project);
+    }
+    Stopwatch w{t_.factorization};
+    ++t_.factorizations;
+    return model_.factor().factorize(model_.system().matrix());
+  }
+
+  // Moves the boundary and extrapolates the free DoFs along the tangent of the solution path,
+  // H_zz dz = -(P^T g + P^T H dx_c), with the factorisation at the last converged state.
+  bool predict(const BoundaryTargets& targets, SimState& x, SubstepReport& rep) {
+    SimState moved = x;
+    coupling_.applyBoundary(targets, moved);
+    const Eigen::Matrix3Xd dxc = moved.x - x.x;
+    Eigen::Matrix3Xd g;
+    Eigen::VectorXd rhs;
+    {
+      Stopwatch w{t_.assembly};
+      g = model_.energy().gradient(x.x);
+      rhs = -(coupling_.reduce(g, x) + model_.system().hessianTimes(x, dxc, settings_.hessian == HessianMode::Projected));
+    }
+    if (!model_.factor().valid() && !factorAt(x, g, std::numeric_limits<double>::infinity())) {
+      fail(rep, "the reduced Hessian is singular at the start of the substep");
+      return false;
+    }
+    Eigen::VectorXd dz;
+    {
+      Stopwatch w{t_.solve};
+      dz = model_.factor().solve(rhs);
+    }
+    // Shorten the prediction until no element is inverted; the boundary move itself stays whole.
+    Stopwatch w{t_.lineSearch};
+    for (double alpha = 1.0; alpha > 1e-3; alpha *= 0.5) {
+      SimState trial = moved;
+      coupling_.step(dz, alpha, trial);
+      if (std::isfinite(model_.energy().energy(trial.x))) {
+        x = std::move(trial);
+        return true;
+      }
+    }
+    if (std::isfinite(model_.energy().energy(moved.x))) {
+      x = std::move(moved);
+      return true;
+    }
+    fail(rep, "moving the boundary this far in one substep inverts elements");
+    return false;
+  }
+
+  // Backtracking (Armijo) on the total energy; a trial with an inverted element has infinite
+  // energy and is never accepted. Returns the step taken, 0 when none decreases the energy.
+  double lineSearch(SimState& x, const Eigen::VectorXd& r, const Eigen::VectorXd& dz, double residual) {
+    Stopwatch w{t_.lineSearch};
+    const double e0 = model_.energy().energy(x.x);
+    const double slope = r.dot(dz);
+    // Below this predicted decrease the energy difference is lost in rounding; accept a valid
+    // full step there (Newton is converging quadratically) instead of stalling.
+    const double roundoff = 1e-12 * std::max(std::abs(e0), 1e-30);
+    for (double alpha = 1.0; alpha > 1e-10; alpha *= 0.5) {
+      SimState trial = x;
+      coupling_.step(dz, alpha, trial);
+      const double e = model_.energy().energy(trial.x);
+      if (!std::isfinite(e)) continue;
+      if (e <= e0 + 1e-4 * alpha * slope || (-slope < roundoff && residual <= 1e3 * model_.forceTolerance())) {
+        x = std::move(trial);
+        return alpha;
+      }
+    }
+    return 0.0;
+  }
+
+  Model& model_;
+  const Coupling& coupling_;
+  const SolverSettings& settings_;
+  SolveTimings& t_;
+  double indefiniteAtResidual_ = std::numeric_limits<double>::infinity();
+};
+
+}  // namespace
+
+SubstepReport solveSubstep(Model& model, const BoundaryTargets& targets, const SolverSettings& settings,
+                           SimState& state, SolveTimings& timings) {
+  return Newton(model, settings, timings).run(targets, state);
+}
+
+}  // namespace orthosim

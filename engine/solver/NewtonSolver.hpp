@@ -1,0 +1,14 @@
+#pragma once
+// One substep: move the boundary to its targets, predict the free DoFs along the tangent of the
+// solution path, then Newton on the reduced system (eq. 10) with an energy line search.
+#include "scene/Scene.hpp"
+#include "solver/Model.hpp"
+#include "solver/SolveResult.hpp"
+
+namespace orthosim {
+
+// On success `state` holds the converged state; on failure it is left as it was.
+SubstepReport solveSubstep(Model& model, const BoundaryTargets& targets, const SolverSettings& settings,
+                           SimState& state, SolveTimings& timings);
+
+}  // namespace orthosim

@@ -1,0 +1,76 @@
+#include "solver/PlanSolver.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "solver/NewtonSolver.hpp"
+
+namespace orthosim {
+namespace {
+
+BoundaryTargets targetsAt(const SimState& start, const PlanTargets& end, double s) {
+  BoundaryTargets t;
+  t.fragments.resize(start.fragments.size());
+  for (size_t f = 0; f < start.fragments.size(); ++f)
+    t.fragments[f] = interpolate(start.fragments[f], end.boundary.fragments[f], s, end.centers[f]);
+  t.fixedScale = (1.0 - s) * start.fixedScale + s * end.boundary.fixedScale;
+  return t;
+}
+
+void summarize(Model& model, SolveResult& r) {
+  r.energy = model.energy().energy(r.state.x);
+  r.minDetF = model.energy().minDetF(r.state.x);
+  r.residual = r.substeps.empty() ? 0.0 : r.substeps.back().residual;
+  for (const auto& s : r.substeps)
+    if (s.converged) {
+      r.iterations += s.iterations;
+      r.chordIterations += s.chordIterations;
+    }
+}
+
+}  // namespace
+
+SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& targets, const SolverSettings& settings) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SolveResult r;
+  r.state = start;
+  const double nominal = settings.substeps > 0 ? 1.0 / settings.substeps : 1.0;
+  const double minStep = nominal / double(1 << std::min(settings.maxRefinements, 30));
+  double s = 0.0, ds = nominal;
+  model.factor().invalidate();  // the factor may belong to another state
+  while (s < 1.0) {
+    const double s1 = (1.0 - s - ds < 1e-12) ? 1.0 : s + ds;
+    SubstepReport rep = solveSubstep(model, targetsAt(start, targets, s1), settings, r.state, r.timings);
+    rep.from = s;
+    rep.to = s1;
+    const bool ok = rep.converged;
+    const std::string failure = rep.failure;
+    r.substeps.push_back(std::move(rep));
+    if (ok) {
+      s = s1;
+      // Adaptive: try a longer step next; fixed: return to the requested size.
+      ds = settings.substeps > 0 ? nominal : std::min(2.0 * ds, 1.0);
+      continue;
+    }
+    ds *= 0.5;
+    ++r.refinements;
+    if (ds < minStep) {
+      r.error = "the solve did not converge: substep " + std::to_string(s) + " -> " + std::to_string(s1) +
+                " failed (" + failure + ") after " + std::to_string(r.refinements) +
+                " refinements; the state at load fraction " + std::to_string(s) + " is kept";
+      break;
+    }
+  }
+  r.loadFraction = s;
+  r.converged = s >= 1.0;
+  summarize(model, r);
+  r.timings.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+SolveResult solveScene(Model& model) {
+  const SimState start = model.restState();
+  return solvePlan(model, start, model.targetsFromPlan(model.scene().plan, start), model.scene().solver);
+}
+
+}  // namespace orthosim

@@ -1,0 +1,15 @@
+#pragma once
+// Applies a plan in substeps: a fixed count when the scene asks, otherwise adaptively (start with
+// the whole plan, halve a substep that fails, grow the next after a success). Always returns the
+// last converged state; a solve that cannot finish says why.
+#include "solver/Model.hpp"
+#include "solver/SolveResult.hpp"
+
+namespace orthosim {
+
+SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& targets, const SolverSettings& settings);
+
+// The scene's own plan from the rest state with the scene's settings.
+SolveResult solveScene(Model& model);
+
+}  // namespace orthosim

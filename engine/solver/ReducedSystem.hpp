@@ -1,0 +1,47 @@
+#pragma once
+// The reduced Newton matrix of eq. (10), (S~ + A^T S) H (S~^T + S^T A), assembled element by
+// element straight into a sparse lower triangle whose pattern is built once per model. Elements
+// whose nodes are free or constant (most of them) scatter a sub-block of their Hessian; elements
+// touching a free fragment go through their 12 x m local Jacobian.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "physics/SoftTissueEnergy.hpp"
+#include "solver/Coupling.hpp"
+
+namespace orthosim {
+
+class ReducedSystem {
+ public:
+  ReducedSystem(const SoftTissueEnergy& energy, const Coupling& coupling);
+
+  // Assembles the reduced Hessian at `state`; `g` is the full gradient there (for the curvature
+  // of free-fragment rotations).
+  void assemble(const SimState& state, const Eigen::Matrix3Xd& g, bool projectToPSD);
+  // Lower triangle (CSC) of the reduced Hessian.
+  const Eigen::SparseMatrix<double>& matrix() const { return H_; }
+  // P^T H dx for a full displacement dx: the reduced force a move of constrained nodes causes.
+  Eigen::VectorXd hessianTimes(const SimState& state, const Eigen::Matrix3Xd& dx, bool projectToPSD) const;
+
+ private:
+  struct GeneralElement {
+    int element;
+    std::vector<int> dofs;  // sorted reduced DoFs
+    std::vector<int> index;  // dofs^2 value indices, -1 above the diagonal
+  };
+  Eigen::Matrix<double, 12, Eigen::Dynamic> localJacobian(const GeneralElement& g, const SimState& s) const;
+  void addRotationCurvature(const SimState& state, const Eigen::Matrix3Xd& g);
+
+  const SoftTissueEnergy& energy_;
+  const Coupling& coupling_;
+  Eigen::SparseMatrix<double> H_;
+  std::vector<int> simpleElements_;
+  std::vector<int> simpleIndex_;  // 144 per simple element, -1 where not scattered
+  std::vector<std::vector<int>> colors_;  // simple elements grouped so that none share a node
+  std::vector<int> serialSlots_;          // simple elements left over after 64 colours
+  std::vector<GeneralElement> general_;
+  std::vector<int> rotationBlockIndex_;  // 9 per free fragment (3x3 rotation block, column-major)
+};
+
+}  // namespace orthosim
