@@ -164,12 +164,12 @@ void ReducedSystem::assemble(const SimState& state, const Eigen::Matrix3Xd& g, b
     for (int r = 0; r < m; ++r)
       for (int c = 0; c <= r; ++c) values[ge.index[m * r + c]] += Hr(r, c);
   }
-  addRotationCurvature(state, g);
+  addRotationCurvature(state, g, projectToPSD);
 }
 
 // Second derivative of x = Rot(theta) a + p in theta, contracted with the nodal forces:
-// sum_i w (sym(g a^T) - (g.a) I). Clamped to positive semi-definite for the Newton matrix.
-void ReducedSystem::addRotationCurvature(const SimState& state, const Eigen::Matrix3Xd& g) {
+// sum_i w (sym(g a^T) - (g.a) I). Clamped to positive semi-definite when projecting.
+void ReducedSystem::addRotationCurvature(const SimState& state, const Eigen::Matrix3Xd& g, bool projectToPSD) {
   int k = 0;
   for (int f = 0; f < coupling_.numFragments(); ++f) {
     if (!coupling_.isFree(f)) continue;
@@ -181,8 +181,11 @@ void ReducedSystem::addRotationCurvature(const SimState& state, const Eigen::Mat
         const Eigen::Vector3d gi = g.col(i);
         M += t->weight * (0.5 * (gi * a.transpose() + a * gi.transpose()) - gi.dot(a) * Eigen::Matrix3d::Identity());
       }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(M);
-    const Eigen::Matrix3d Mp = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+    Eigen::Matrix3d Mp = M;
+    if (projectToPSD) {
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(M);
+      Mp = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+    }
     for (int c = 0; c < 3; ++c)
       for (int r = 0; r < 3; ++r)
         if (rotationBlockIndex_[9 * k + 3 * c + r] >= 0) H_.valuePtr()[rotationBlockIndex_[9 * k + 3 * c + r]] += Mp(r, c);

@@ -31,7 +31,7 @@ class ReducedSystem {
     std::vector<int> index;  // dofs^2 value indices, -1 above the diagonal
   };
   Eigen::Matrix<double, 12, Eigen::Dynamic> localJacobian(const GeneralElement& g, const SimState& s) const;
-  void addRotationCurvature(const SimState& state, const Eigen::Matrix3Xd& g);
+  void addRotationCurvature(const SimState& state, const Eigen::Matrix3Xd& g, bool projectToPSD);
 
   const SoftTissueEnergy& energy_;
   const Coupling& coupling_;
