@@ -19,7 +19,12 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--repeats", bench.repeats, "Solves per size (median reported)")->check(CLI::Range(1, 100));
   benchCmd->add_option("--json", bench.jsonPath, "Also write the figures to this JSON file");
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // Help and version exit 0; any usage error is bad input (exit 1), as for a bad scene.
+    return app.exit(e) == 0 ? 0 : 1;
+  }
   try {
     if (*solve) return orthosim::cli::runSolve(scene, out);
     if (*benchCmd) return orthosim::cli::runBench(bench);

@@ -30,23 +30,24 @@ std::vector<int> TetMesh::unusedNodes() const {
   return out;
 }
 
-void validateMesh(const TetMesh& mesh, const std::string& where) {
+void validateMesh(const TetMesh& mesh, const std::string& where, int indexBase) {
   if (mesh.numNodes() == 0) throw std::runtime_error(where + ": mesh has no nodes");
   if (mesh.numTets() == 0) throw std::runtime_error(where + ": mesh has no tetrahedra");
   for (int i = 0; i < mesh.numNodes(); ++i)
     if (!mesh.rest.col(i).allFinite())
-      throw std::runtime_error(where + ": node " + std::to_string(i) + " has a non-finite coordinate");
+      throw std::runtime_error(where + ": node " + std::to_string(i + indexBase) + " has a non-finite coordinate");
   const double scale = mesh.meanEdgeLength();
   for (int e = 0; e < mesh.numTets(); ++e) {
     for (int a = 0; a < 4; ++a) {
       const int n = mesh.tets(a, e);
       if (n < 0 || n >= mesh.numNodes())
-        throw std::runtime_error(where + ": element " + std::to_string(e) + " refers to node " +
-                                 std::to_string(n) + ", outside 0.." + std::to_string(mesh.numNodes() - 1));
+        throw std::runtime_error(where + ": element " + std::to_string(e + indexBase) + " refers to node " +
+                                 std::to_string(n + indexBase) + ", outside " + std::to_string(indexBase) + ".." +
+                                 std::to_string(mesh.numNodes() - 1 + indexBase));
     }
     const double v = mesh.signedVolume(e, mesh.rest);
     if (!(v > 1e-12 * scale * scale * scale))
-      throw std::runtime_error(where + ": element " + std::to_string(e) +
+      throw std::runtime_error(where + ": element " + std::to_string(e + indexBase) +
                                (v < 0 ? " is inverted (negative volume " : " is degenerate (volume ") +
                                std::to_string(v) + " mm^3)");
   }

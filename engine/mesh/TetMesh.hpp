@@ -21,8 +21,9 @@ struct TetMesh {
   std::vector<int> unusedNodes() const;
 };
 
-// Throws std::runtime_error naming `where` and the element when an index is out of range,
-// a coordinate is not finite, or an element is degenerate or inverted.
-void validateMesh(const TetMesh& mesh, const std::string& where);
+// Throws std::runtime_error naming `where` and the element (numbered from `indexBase`, as in the
+// file it came from) when an index is out of range, a coordinate is not finite, or an element is
+// degenerate or inverted.
+void validateMesh(const TetMesh& mesh, const std::string& where, int indexBase = 0);
 
 }  // namespace orthosim

@@ -128,6 +128,7 @@ std::vector<BlendedNode> readBlendFile(const std::string& path, const Scene& sce
   std::ifstream in(path);
   if (!in) throw SceneError(path + ": cannot open file (" + field + ")");
   std::vector<BlendedNode> out;
+  std::set<int> seen;
   std::string line;
   for (int lineNo = 1; std::getline(in, line); ++lineNo) {
     const auto where = [&] { return path + ":" + std::to_string(lineNo) + " (" + field + "): "; };
@@ -140,6 +141,7 @@ std::vector<BlendedNode> readBlendFile(const std::string& path, const Scene& sce
     }
     if (b.node < 0 || b.node >= scene.mesh.numNodes())
       throw SceneError(where() + "node index " + std::to_string(b.node) + " is outside 0.." + std::to_string(scene.mesh.numNodes() - 1));
+    if (!seen.insert(b.node).second) throw SceneError(where() + "node " + std::to_string(b.node) + " is listed twice");
     std::string name;
     double w;
     while (ss >> name) {
@@ -205,11 +207,14 @@ Scene loadSceneFile(const std::string& path) {
   json j;
   try {
     j = json::parse(readFile(path));
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax errors, and numbers beyond double (1e999)
     throw SceneError(path + ": malformed JSON: " + e.what());
   }
   Scene scene;
   Reader root(path, j, "");
+  // Unknown top-level fields first: a misspelt section must not surface as its consequences.
+  for (const char* k : {"units", "tissue", "fragments", "fixed", "blended", "plan", "solver"}) root.has(k);
+  root.rejectUnknown();
   if (root.has("units") && root.string("units") != "mm") root.fail("only \"mm\" is supported", "units");
 
   {
@@ -220,7 +225,7 @@ Scene loadSceneFile(const std::string& path) {
       TetgenMesh m = readTetgen(node, ele);
       scene.mesh = std::move(m.mesh);
       scene.indexBase = m.indexBase;
-      validateMesh(scene.mesh, node + " / " + ele);
+      validateMesh(scene.mesh, ele, scene.indexBase);
     } catch (const SceneError&) {
       throw;
     } catch (const std::exception& e) {

@@ -41,6 +41,7 @@ Coupling::Coupling(const Scene& scene) : rest_(scene.mesh.rest) {
   }
   for (const auto& b : scene.blended) {
     checkNode(b.node, "blended");
+    if (!owner[b.node].empty()) throw std::invalid_argument(nodeName(b.node) + " is blended and also coupled to " + owner[b.node]);
     claim(b.node, "blended weights");
     double sum = 0.0;
     for (const auto& [f, w] : b.weights) {

@@ -27,8 +27,8 @@ class Newton {
   SubstepReport run(const BoundaryTargets& targets, SimState& state) {
     SubstepReport rep;
     SimState x = state;
-    if (!predict(targets, x, rep)) return rep;
     double lastStep = std::numeric_limits<double>::infinity();
+    if (!predict(targets, x, rep, lastStep)) return rep;
     double lastResidual = std::numeric_limits<double>::infinity();
     double lastAlpha = 0.0;
     for (int it = 0;; ++it) {
@@ -104,7 +104,7 @@ class Newton {
 
   // Moves the boundary and extrapolates the free DoFs along the tangent of the solution path,
   // H_zz dz = -(P^T g + P^T H dx_c), with the factorisation at the last converged state.
-  bool predict(const BoundaryTargets& targets, SimState& x, SubstepReport& rep) {
+  bool predict(const BoundaryTargets& targets, SimState& x, SubstepReport& rep, double& step) {
     SimState moved = x;
     coupling_.applyBoundary(targets, moved);
     const Eigen::Matrix3Xd dxc = moved.x - x.x;
@@ -114,6 +114,10 @@ class Newton {
       Stopwatch w{t_.assembly};
       g = model_.energy().gradient(x.x);
       rhs = -(coupling_.reduce(g, x) + model_.system().hessianTimes(x, dxc, settings_.hessian == HessianMode::Projected));
+    }
+    if (dxc.isZero(0.0) && maxNorm(rhs) <= model_.forceTolerance()) {  // nothing moves: no prediction
+      step = 0.0;
+      return true;
     }
     if (!model_.factor().valid() && !factorAt(x, g, std::numeric_limits<double>::infinity())) {
       fail(rep, "the reduced Hessian is singular at the start of the substep");
@@ -131,11 +135,13 @@ class Newton {
       coupling_.step(dz, alpha, trial);
       if (std::isfinite(model_.energy().energy(trial.x))) {
         x = std::move(trial);
+        step = alpha * maxNorm(dz);
         return true;
       }
     }
     if (std::isfinite(model_.energy().energy(moved.x))) {
       x = std::move(moved);
+      step = std::numeric_limits<double>::infinity();  // the prediction was dropped
       return true;
     }
     fail(rep, "moving the boundary this far in one substep inverts elements");

@@ -20,9 +20,10 @@ BoundaryTargets targetsAt(const SimState& start, const PlanTargets& end, double 
 void summarize(Model& model, SolveResult& r) {
   r.energy = model.energy().energy(r.state.x);
   r.minDetF = model.energy().minDetF(r.state.x);
-  r.residual = r.substeps.empty() ? 0.0 : r.substeps.back().residual;
+  r.residual = 0.0;  // of the last converged substep: the state returned
   for (const auto& s : r.substeps)
     if (s.converged) {
+      r.residual = s.residual;
       r.iterations += s.iterations;
       r.chordIterations += s.chordIterations;
     }
