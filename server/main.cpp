@@ -13,6 +13,10 @@ int main(int argc, char** argv) {
   solve->add_option("scene", scene, "Scene file (JSON, see docs/scene-format.md)")->required()->check(CLI::ExistingFile);
   solve->add_option("--out", out, "Output folder")->required();
 
+  std::string demoOut = "orthosim-demo";
+  auto* demo = app.add_subcommand("demo", "Write the built-in demo scene and solve it (no data needed)");
+  demo->add_option("--out", demoOut, "Output folder (scene/ and result/ inside)");
+
   orthosim::cli::BenchOptions bench;
   auto* benchCmd = app.add_subcommand("bench", "Time solves of generated blocks with two bonded fragments");
   benchCmd->add_option("--tets", bench.tetCounts, "Approximate tetrahedron counts")->delimiter(',');
@@ -27,6 +31,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*solve) return orthosim::cli::runSolve(scene, out);
+    if (*demo) return orthosim::cli::runDemo(demoOut);
     if (*benchCmd) return orthosim::cli::runBench(bench);
   } catch (const std::exception& e) {
     std::cerr << "orthosim: " << e.what() << "\n";

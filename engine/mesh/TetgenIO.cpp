@@ -110,4 +110,15 @@ void writeTetgenNodes(const std::string& path, const Eigen::Matrix3Xd& x, int in
   if (!ok) throw std::runtime_error(path + ": write failed");
 }
 
+void writeTetgenElements(const std::string& path, const Eigen::Matrix4Xi& tets, int indexBase) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw std::runtime_error(path + ": cannot write file");
+  std::fprintf(f, "%ld 4 0\n", static_cast<long>(tets.cols()));
+  for (long e = 0; e < tets.cols(); ++e)
+    std::fprintf(f, "%ld %d %d %d %d\n", e + indexBase, tets(0, e) + indexBase, tets(1, e) + indexBase,
+                 tets(2, e) + indexBase, tets(3, e) + indexBase);
+  const bool ok = std::fclose(f) == 0;
+  if (!ok) throw std::runtime_error(path + ": write failed");
+}
+
 }  // namespace orthosim

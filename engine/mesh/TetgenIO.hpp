@@ -17,5 +17,7 @@ TetgenMesh readTetgen(const std::string& nodePath, const std::string& elePath);
 
 // Writes positions (3 x n) in TetGen .node format with the given index base.
 void writeTetgenNodes(const std::string& path, const Eigen::Matrix3Xd& x, int indexBase);
+// Writes tetrahedra (4 x m, 0-based) in TetGen .ele format with the given index base.
+void writeTetgenElements(const std::string& path, const Eigen::Matrix4Xi& tets, int indexBase);
 
 }  // namespace orthosim

@@ -25,6 +25,22 @@ Model::Model(Scene scene) : scene_(std::move(scene)) {
   buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+bool Model::isRestState(const SimState& s) const {
+  if (s.fixedScale != 0.0 || s.x != scene_.mesh.rest) return false;
+  for (const RigidPose& p : s.fragments)
+    if (p.R != Eigen::Matrix3d::Identity() || p.b != Eigen::Vector3d::Zero()) return false;
+  return true;
+}
+
+const CholmodFactor* Model::restFactor(int& factorizations) {
+  if (restFactor_.valid()) return &restFactor_;
+  const SimState rest = restState();
+  system_->assemble(rest, energy_->gradient(rest.x), false);  // at rest the exact Hessian is PSD
+  restFactor_.analyze(system_->matrix());
+  ++factorizations;
+  return restFactor_.factorize(system_->matrix()) ? &restFactor_ : nullptr;
+}
+
 double Model::forceTolerance() const {
   // An out-of-balance nodal force of 1e-4 E h^2 displaces a node by about 1e-4 h (0.2 um for
   // 2 mm elements), consistent with the step tolerance.

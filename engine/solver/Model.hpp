@@ -40,6 +40,11 @@ class Model {
   double buildSeconds() const { return buildSeconds_; }
 
   SimState restState() const { return coupling_->restState(); }
+  bool isRestState(const SimState& s) const;
+  // The factorisation of the reduced Hessian at rest, computed on first use and kept: every solve
+  // that starts from rest predicts its first substep with it. Adds 1 to `factorizations` when it
+  // has to be computed; nullptr when the rest Hessian is singular (the tissue is not held).
+  const CholmodFactor* restFactor(int& factorizations);
   // The end of a plan started from `start`: planned fragments take their planned pose, the
   // others keep the pose they have in `start`; fixed displacements are fully applied.
   PlanTargets targetsFromPlan(const std::map<std::string, FragmentMotion>& plan, const SimState& start) const;
@@ -50,6 +55,7 @@ class Model {
   std::unique_ptr<Coupling> coupling_;
   std::unique_ptr<ReducedSystem> system_;
   CholmodFactor factor_;
+  CholmodFactor restFactor_;
   double lengthScale_ = 1.0;
   double buildSeconds_ = 0.0;
 };

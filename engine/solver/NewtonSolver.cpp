@@ -21,8 +21,8 @@ double maxNorm(const Eigen::VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Inf
 
 class Newton {
  public:
-  Newton(Model& model, const SolverSettings& settings, SolveTimings& timings)
-      : model_(model), coupling_(model.coupling()), settings_(settings), t_(timings) {}
+  Newton(Model& model, const SolverSettings& settings, SolveTimings& timings, bool atRest)
+      : model_(model), coupling_(model.coupling()), settings_(settings), t_(timings), atRest_(atRest) {}
 
   SubstepReport run(const BoundaryTargets& targets, SimState& state) {
     SubstepReport rep;
@@ -72,10 +72,12 @@ class Newton {
   }
 
  private:
-  SubstepReport& fail(SubstepReport& rep, const std::string& why) {
+  // A failure after Newton moved the state leaves a factorisation of a discarded state; one in
+  // the predictor leaves the state, and so the factorisation, as they were.
+  SubstepReport& fail(SubstepReport& rep, const std::string& why, bool stateMoved = true) {
     rep.converged = false;
     rep.failure = why;
-    model_.factor().invalidate();
+    if (stateMoved) model_.factor().invalidate();
     return rep;
   }
 
@@ -119,14 +121,19 @@ class Newton {
       step = 0.0;
       return true;
     }
-    if (!model_.factor().valid() && !factorAt(x, g, std::numeric_limits<double>::infinity())) {
-      fail(rep, "the reduced Hessian is singular at the start of the substep");
+    const CholmodFactor* factor = &model_.factor();
+    if (atRest_) {
+      Stopwatch w{t_.factorization};
+      factor = model_.restFactor(t_.factorizations);
+    }
+    if (!factor || (!factor->valid() && !factorAt(x, g, std::numeric_limits<double>::infinity()))) {
+      fail(rep, "the reduced Hessian is singular at the start of the substep", false);
       return false;
     }
     Eigen::VectorXd dz;
     {
       Stopwatch w{t_.solve};
-      dz = model_.factor().solve(rhs);
+      dz = factor->solve(rhs);
     }
     // Shorten the prediction until no element is inverted; the boundary move itself stays whole.
     Stopwatch w{t_.lineSearch};
@@ -144,7 +151,7 @@ class Newton {
       step = std::numeric_limits<double>::infinity();  // the prediction was dropped
       return true;
     }
-    fail(rep, "moving the boundary this far in one substep inverts elements");
+    fail(rep, "moving the boundary this far in one substep inverts elements", false);
     return false;
   }
 
@@ -174,6 +181,7 @@ class Newton {
   const Coupling& coupling_;
   const SolverSettings& settings_;
   SolveTimings& t_;
+  bool atRest_;  // the substep starts from the rest state: predict with the model's rest factor
   double indefiniteAtResidual_ = std::numeric_limits<double>::infinity();
 };
 
@@ -181,7 +189,7 @@ class Newton {
 
 SubstepReport solveSubstep(Model& model, const BoundaryTargets& targets, const SolverSettings& settings,
                            SimState& state, SolveTimings& timings) {
-  return Newton(model, settings, timings).run(targets, state);
+  return Newton(model, settings, timings, model.isRestState(state)).run(targets, state);
 }
 
 }  // namespace orthosim
