@@ -21,6 +21,14 @@ Model::Model(Scene scene) : scene_(std::move(scene)) {
   if (coupling_->numReducedDofs() == 0) throw std::invalid_argument("the scene has no free degrees of freedom");
   system_ = std::make_unique<ReducedSystem>(*energy_, *coupling_);
   factor_.analyze(system_->matrix());
+  // The rest Hessian is positive definite exactly when every part of the tissue is held: check it
+  // now, and keep its factorisation for the first substep of every solve that starts from rest.
+  const SimState rest = restState();
+  system_->assemble(rest, energy_->gradient(rest.x), false);
+  restFactor_.analyze(system_->matrix());
+  if (!restFactor_.factorize(system_->matrix()))
+    throw std::invalid_argument("part of the tissue is held by nothing (the stiffness matrix at rest is singular): "
+                                "check that every connected piece of tissue has fixed or bonded nodes");
   lengthScale_ = scene_.mesh.meanEdgeLength();
   buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -30,15 +38,6 @@ bool Model::isRestState(const SimState& s) const {
   for (const RigidPose& p : s.fragments)
     if (p.R != Eigen::Matrix3d::Identity() || p.b != Eigen::Vector3d::Zero()) return false;
   return true;
-}
-
-const CholmodFactor* Model::restFactor(int& factorizations) {
-  if (restFactor_.valid()) return &restFactor_;
-  const SimState rest = restState();
-  system_->assemble(rest, energy_->gradient(rest.x), false);  // at rest the exact Hessian is PSD
-  restFactor_.analyze(system_->matrix());
-  ++factorizations;
-  return restFactor_.factorize(system_->matrix()) ? &restFactor_ : nullptr;
 }
 
 double Model::forceTolerance() const {

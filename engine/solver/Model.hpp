@@ -21,7 +21,8 @@ struct PlanTargets {
 
 class Model {
  public:
-  // Validates the scene (throws std::invalid_argument with the reason) and builds everything.
+  // Validates the scene (throws std::invalid_argument with the reason) and builds everything,
+  // including the factorisation of the reduced Hessian at rest.
   explicit Model(Scene scene);
   Model(const Model&) = delete;
   Model& operator=(const Model&) = delete;
@@ -41,10 +42,9 @@ class Model {
 
   SimState restState() const { return coupling_->restState(); }
   bool isRestState(const SimState& s) const;
-  // The factorisation of the reduced Hessian at rest, computed on first use and kept: every solve
-  // that starts from rest predicts its first substep with it. Adds 1 to `factorizations` when it
-  // has to be computed; nullptr when the rest Hessian is singular (the tissue is not held).
-  const CholmodFactor* restFactor(int& factorizations);
+  // The factorisation of the reduced Hessian at rest, made when the model is built: every solve
+  // that starts from rest predicts its first substep with it.
+  const CholmodFactor& restFactor() const { return restFactor_; }
   // The end of a plan started from `start`: planned fragments take their planned pose, the
   // others keep the pose they have in `start`; fixed displacements are fully applied.
   PlanTargets targetsFromPlan(const std::map<std::string, FragmentMotion>& plan, const SimState& start) const;

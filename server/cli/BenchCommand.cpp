@@ -41,12 +41,13 @@ double factorizationSeconds(Model& model, int repeats) {
 int runBench(const BenchOptions& opt) {
   std::printf("orthosim bench: FEBio-style block 60x40x20 mm, body B moved by t=(0,5,3) mm, 5 deg about z;\n"
               "adaptive substeps, default tolerances; %u hardware threads\n"
-              "first_s: first solve on a new model (factorises the rest Hessian); solve_s: median of %d\n"
-              "solves on the built model (rest factorisation kept, as the server does); factor_s: median\n"
-              "numeric factorisation; solve/fac = solve_s / factor_s\n\n",
+              "build_s: model build (pattern, symbolic analysis, rest factorisation); first_s: first solve;\n"
+              "solve_s: median of the next %d solves; factor_s: median\n"
+              "numeric factorisation; solve/fac = solve_s / factor_s; err_mm: max node distance to a\n"
+              "solve of the same model converged to 1e-9 of an edge\n\n",
               std::thread::hardware_concurrency(), opt.repeats);
-  std::printf("%9s %8s %8s %9s %9s %9s %7s %6s %10s %10s %9s\n", "tets", "nodes", "dofs", "build_s", "first_s",
-              "solve_s", "newton", "chord", "factor_s", "solve/fac", "substeps");
+  std::printf("%9s %8s %8s %9s %9s %9s %7s %6s %10s %10s %9s %9s\n", "tets", "nodes", "dofs", "build_s", "first_s",
+              "solve_s", "newton", "chord", "factor_s", "solve/fac", "substeps", "err_mm");
   nlohmann::json rows = nlohmann::json::array();
   for (int target : opt.tetCounts) {
     const Eigen::Vector3i cells = cellsForTetCount(Eigen::Vector3d(60, 40, 20), target);
@@ -68,10 +69,17 @@ int runBench(const BenchOptions& opt) {
         times.push_back(last.timings.total);
     }
     const double solve = median(times);
+    // Error of the default tolerances: against the same model solved to 1e-9 of an edge.
+    Scene tight = model.scene();
+    tight.solver.forceTolerance = 1e-9 * tight.youngsModulus * model.lengthScale() * model.lengthScale();
+    tight.solver.stepTolerance = 1e-9 * model.lengthScale();
+    Model reference(std::move(tight));
+    const SolveResult ref = solveScene(reference);
+    const double error = (ref.state.x - last.state.x).colwise().norm().maxCoeff();
     const double fac = factorizationSeconds(model, std::max(3, opt.repeats));
-    std::printf("%9d %8d %8d %9.3f %9.3f %9.3f %7d %6d %10.4f %10.1f %9zu\n", model.scene().mesh.numTets(),
+    std::printf("%9d %8d %8d %9.3f %9.3f %9.3f %7d %6d %10.4f %10.1f %9zu %9.1e\n", model.scene().mesh.numTets(),
                 model.scene().mesh.numNodes(), model.coupling().numReducedDofs(), build, first, solve, last.iterations,
-                last.chordIterations, fac, solve / fac, last.substeps.size());
+                last.chordIterations, fac, solve / fac, last.substeps.size(), error);
     rows.push_back({{"tets", model.scene().mesh.numTets()},
                     {"nodes", model.scene().mesh.numNodes()},
                     {"reduced_dofs", model.coupling().numReducedDofs()},
@@ -84,6 +92,7 @@ int runBench(const BenchOptions& opt) {
                     {"factorizations", last.timings.factorizations},
                     {"factorization_median_s", fac},
                     {"solve_over_factorization", solve / fac},
+                    {"max_error_mm", error},
                     {"timings_last_s",
                      {{"assembly", last.timings.assembly},
                       {"factorization", last.timings.factorization},

@@ -46,8 +46,15 @@ TEST(PlanSolver, EmptyPlanReturnsTheRestState) {
   EXPECT_EQ(r.iterations, 0);
 }
 
+// Scenes whose comparisons are tighter than the default tolerances (1e-4 of an edge).
+Scene tightlyConverged(Scene s) {
+  s.solver.forceTolerance = 1e-10;
+  s.solver.stepTolerance = 1e-9;
+  return s;
+}
+
 TEST(PlanSolver, PlanAppliedThenUndoneReturnsToRest) {
-  Model model(coarseBlock());
+  Model model(tightlyConverged(coarseBlock()));
   const SimState rest = model.restState();
   const SolveResult forward = solvePlan(model, rest, model.targetsFromPlan(model.scene().plan, rest), model.scene().solver);
   ASSERT_TRUE(forward.converged) << forward.error;
@@ -74,9 +81,9 @@ TEST(PlanSolver, FixedSubstepCountIsHonoured) {
 }
 
 TEST(PlanSolver, FixedAndAdaptiveSubstepsReachTheSameAnswer) {
-  Scene fixed = coarseBlock();
+  Scene fixed = tightlyConverged(coarseBlock());
   fixed.solver.substeps = 10;
-  Model a(fixed), b(coarseBlock());
+  Model a(fixed), b(tightlyConverged(coarseBlock()));
   const SolveResult ra = solveScene(a), rb = solveScene(b);
   ASSERT_TRUE(ra.converged && rb.converged);
   EXPECT_LT(rb.substeps.size(), ra.substeps.size());  // adaptive takes as few as converge
