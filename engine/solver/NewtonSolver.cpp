@@ -63,6 +63,10 @@ class Newton {
       ++(chord ? rep.chordIterations : rep.iterations);
       lastWasChord = chord;
       lastAlpha = lineSearch(x, r, dz, rep.residual);
+      if (lastAlpha <= 0 && chord) {  // a stale factorisation: refactor next time round
+        lastStep = std::numeric_limits<double>::infinity();
+        continue;
+      }
       if (lastAlpha <= 0) return fail(rep, "the line search found no decrease of the energy");
       lastStep = lastAlpha * maxNorm(dz);
       lastResidual = rep.residual;
