@@ -21,8 +21,8 @@ double maxNorm(const Eigen::VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Inf
 
 class Newton {
  public:
-  Newton(Model& model, const SolverSettings& settings, SolveTimings& timings, bool atRest)
-      : model_(model), coupling_(model.coupling()), settings_(settings), t_(timings), atRest_(atRest) {}
+  Newton(Model& model, const SolverSettings& settings, SolveTimings& timings, const SolveControl& control, bool atRest)
+      : model_(model), coupling_(model.coupling()), settings_(settings), t_(timings), control_(control), atRest_(atRest) {}
 
   SubstepReport run(const BoundaryTargets& targets, SimState& state) {
     SubstepReport rep;
@@ -33,6 +33,7 @@ class Newton {
     double lastAlpha = 0.0;
     bool lastWasChord = false;
     for (int it = 0;; ++it) {
+      if (control_.cancelled()) return fail(rep, kCancelled);
       Eigen::Matrix3Xd g;
       Eigen::VectorXd r;
       {
@@ -187,6 +188,7 @@ class Newton {
   const Coupling& coupling_;
   const SolverSettings& settings_;
   SolveTimings& t_;
+  const SolveControl& control_;
   bool atRest_;  // the substep starts from the rest state: predict with the model's rest factor
   double indefiniteAtResidual_ = std::numeric_limits<double>::infinity();
 };
@@ -194,8 +196,8 @@ class Newton {
 }  // namespace
 
 SubstepReport solveSubstep(Model& model, const BoundaryTargets& targets, const SolverSettings& settings,
-                           SimState& state, SolveTimings& timings) {
-  return Newton(model, settings, timings, model.isRestState(state)).run(targets, state);
+                           SimState& state, SolveTimings& timings, const SolveControl& control) {
+  return Newton(model, settings, timings, control, model.isRestState(state)).run(targets, state);
 }
 
 }  // namespace orthosim

@@ -31,7 +31,8 @@ void summarize(Model& model, SolveResult& r) {
 
 }  // namespace
 
-SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& targets, const SolverSettings& settings) {
+SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& targets, const SolverSettings& settings,
+                      const SolveControl& control) {
   const auto t0 = std::chrono::steady_clock::now();
   SolveResult r;
   r.state = start;
@@ -41,14 +42,23 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
   model.factor().invalidate();  // the factor may belong to another state
   while (s < 1.0) {
     const double s1 = (1.0 - s - ds < 1e-12) ? 1.0 : s + ds;
-    SubstepReport rep = solveSubstep(model, targetsAt(start, targets, s1), settings, r.state, r.timings);
+    SubstepReport rep = solveSubstep(model, targetsAt(start, targets, s1), settings, r.state, r.timings, control);
     rep.from = s;
     rep.to = s1;
     const bool ok = rep.converged;
     const std::string failure = rep.failure;
     r.substeps.push_back(std::move(rep));
+    if (failure == kCancelled) {
+      r.error = kCancelled;
+      break;
+    }
     if (ok) {
       s = s1;
+      if (control.onProgress) {
+        SolveProgress p{s, static_cast<int>(r.substeps.size()), 0};
+        for (const auto& sub : r.substeps) p.iterations += sub.iterations + sub.chordIterations;
+        control.onProgress(p);
+      }
       // Adaptive: try a longer step next; fixed: return to the requested size.
       ds = settings.substeps > 0 ? nominal : std::min(2.0 * ds, 1.0);
       continue;

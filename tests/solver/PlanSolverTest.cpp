@@ -3,6 +3,8 @@
 // converged state and says why.
 #include <gtest/gtest.h>
 
+#include <atomic>
+
 #include "mesh/BoxMesh.hpp"
 #include "scene/BlockScene.hpp"
 #include "solver/PlanSolver.hpp"
@@ -122,6 +124,35 @@ TEST(PlanSolver, FailureKeepsTheLastConvergedStateAndSaysWhy) {
   EXPECT_GT(model.energy().minDetF(r.state.x), 0.0);
   // The state kept is the converged one at the reported load fraction.
   if (r.loadFraction == 0.0) EXPECT_EQ((r.state.x - s.mesh.rest).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(PlanSolver, ReportsProgressAndStopsWhenCancelled) {
+  Scene s = coarseBlock();
+  s.solver.substeps = 10;
+  Model model(s);
+  std::atomic<bool> cancel{false};
+  std::vector<double> fractions;
+  SolveControl control;
+  control.cancel = &cancel;
+  control.onProgress = [&](const SolveProgress& p) {
+    fractions.push_back(p.loadFraction);
+    if (fractions.size() == 3) cancel = true;  // e.g. a newer preview arrived
+  };
+  const SimState rest = model.restState();
+  const SolveResult r = solvePlan(model, rest, model.targetsFromPlan(model.scene().plan, rest), s.solver, control);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.error, "cancelled");
+  ASSERT_EQ(fractions.size(), 3u);
+  EXPECT_NEAR(fractions[0], 0.1, 1e-12);
+  EXPECT_NEAR(fractions[2], 0.3, 1e-12);
+  EXPECT_NEAR(r.loadFraction, 0.3, 1e-12);  // the last converged state is returned
+  EXPECT_EQ(r.refinements, 0);                // a cancel is not a failure to refine
+  EXPECT_GT(model.energy().minDetF(r.state.x), 0.0);
+
+  // The same model solves the whole plan afterwards.
+  cancel = false;
+  control.onProgress = nullptr;
+  EXPECT_TRUE(solvePlan(model, rest, model.targetsFromPlan(model.scene().plan, rest), s.solver, control).converged);
 }
 
 TEST(PlanSolver, ExactHessianModeConvergesOnAMildPlan) {
