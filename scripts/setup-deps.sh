@@ -11,6 +11,9 @@ PACKAGES=(
   nlohmann-json3-dev
   libcli11-dev
   libgtest-dev
+  libassimp-dev          # STL/OBJ/PLY surface import and export (engine/mesh/SurfaceImport)
+  libcgal-dev            # exact self-intersection test of surfaces (engine/mesh/SelfIntersection)
+  libtet1.5-dev          # TetGen 1.5: tetrahedralises closed surfaces (engine/mesh/Tetrahedralize)
 )
 
 missing=()
