@@ -173,6 +173,9 @@ struct FormatCase {
   bool keepsUv;
 };
 
+// Readable parameter values in test listings (gtest would print the struct's bytes).
+void PrintTo(const FormatCase& c, std::ostream* os) { *os << c.file; }
+
 class SurfaceRoundTrip : public SurfaceImportTest, public ::testing::WithParamInterface<FormatCase> {};
 
 TEST_P(SurfaceRoundTrip, KeepsGeometryTopologyAndUv) {
