@@ -19,6 +19,7 @@
 
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceImport.hpp"
+#include "mesh/SurfacePrimitives.hpp"
 #include "mesh/SurfaceMesh.hpp"
 
 namespace orthosim {
@@ -34,45 +35,6 @@ void orientOutward(SurfaceMesh& m, const Eigen::Vector3d& centre) {
                                  m.vertices.col(m.triangles(2, t))) / 3.0;
     if (m.areaVector(t).dot(mid - centre) < 0) std::swap(m.triangles(1, t), m.triangles(2, t));
   }
-}
-
-// Icosahedron subdivided `levels` times onto a sphere: 10 * 4^levels + 2 vertices, with
-// longitude/latitude texture coordinates.
-SurfaceMesh icosphere(double radius, int levels, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
-  const double g = (1 + std::sqrt(5.0)) / 2;
-  std::vector<Eigen::Vector3d> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                                    {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-  std::vector<Eigen::Vector3i> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                                    {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (auto& p : v) p.normalize();
-  for (int l = 0; l < levels; ++l) {
-    std::map<std::pair<int, int>, int> mid;
-    auto midpoint = [&](int a, int b) {
-      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-      const auto it = mid.find(key);
-      if (it != mid.end()) return it->second;
-      v.push_back((v[a] + v[b]).normalized());
-      return mid[key] = static_cast<int>(v.size()) - 1;
-    };
-    std::vector<Eigen::Vector3i> next;
-    for (const auto& t : f) {
-      const int ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
-      next.insert(next.end(), {{t[0], ab, ca}, {t[1], bc, ab}, {t[2], ca, bc}, {ab, bc, ca}});
-    }
-    f.swap(next);
-  }
-  SurfaceMesh m;
-  m.vertices.resize(3, v.size());
-  m.uv.resize(2, v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    m.vertices.col(i) = centre + radius * v[i];
-    m.uv.col(i) << std::atan2(v[i].y(), v[i].x()) / (2 * kPi) + 0.5, std::acos(v[i].z()) / kPi;
-  }
-  m.triangles.resize(3, f.size());
-  for (std::size_t t = 0; t < f.size(); ++t) m.triangles.col(t) = f[t];
-  orientOutward(m, centre);
-  return m;
 }
 
 // Axis-aligned cube [lo, lo + size]^3: 8 shared vertices, 12 outward triangles.
@@ -180,7 +142,7 @@ class SurfaceRoundTrip : public SurfaceImportTest, public ::testing::WithParamIn
 
 TEST_P(SurfaceRoundTrip, KeepsGeometryTopologyAndUv) {
   const FormatCase c = GetParam();
-  const SurfaceMesh sphere = icosphere(50, 3, Eigen::Vector3d(10, -20, 30));  // 642 vertices, 1280 triangles
+  const SurfaceMesh sphere = makeIcosphere(50, 3, Eigen::Vector3d(10, -20, 30));  // 642 vertices, 1280 triangles
   exportSurface(sphere, path(c.file), c.encoding);
   SurfaceMesh in = importSurface(path(c.file));
 
@@ -273,7 +235,7 @@ TEST_F(SurfaceImportTest, ObjQuadsAreTriangulated) {
 }
 
 TEST_F(SurfaceImportTest, InspectMeasuresAGoodSurface) {
-  const SurfaceReport r = inspectSurface(icosphere(60, 2));
+  const SurfaceReport r = inspectSurface(makeIcosphere(60, 2));
   EXPECT_EQ(r.triangles, 320);
   EXPECT_TRUE(r.closed() && r.manifold() && r.oriented());
   EXPECT_EQ(r.boundaryLoops, 0);
@@ -304,7 +266,7 @@ TEST_F(SurfaceImportTest, MissingFileAndUnknownFormat) {
 }
 
 TEST_F(SurfaceImportTest, TruncatedBinaryStl) {
-  exportSurface(icosphere(50, 2), path("whole.stl"), SurfaceEncoding::Binary);  // 320 triangles
+  exportSurface(makeIcosphere(50, 2), path("whole.stl"), SurfaceEncoding::Binary);  // 320 triangles
   std::ifstream in(path("whole.stl"), std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ASSERT_EQ(bytes.size(), 84u + 50u * 320u);
@@ -373,7 +335,7 @@ TEST_F(SurfaceImportTest, NonManifoldVertex) {
 
 TEST_F(SurfaceImportTest, OpenSurface) {
   // A sphere with one triangle missing: refused as tissue, accepted as cropped bone with a warning.
-  const SurfaceMesh holed = withoutTriangle(icosphere(50, 2), 7);
+  const SurfaceMesh holed = withoutTriangle(makeIcosphere(50, 2), 7);
   const std::string e = checkError(holed, "open.stl", SurfaceRequirement::Closed);
   EXPECT_TRUE(contains(e, path("open.stl"))) << e;
   EXPECT_TRUE(contains(e, "not closed: 3 boundary edges in 1 loop")) << e;
@@ -390,7 +352,7 @@ TEST_F(SurfaceImportTest, OpenSurface) {
 
 TEST_F(SurfaceImportTest, CroppedBoneWithTwoCuts) {
   // A sphere cut by two planes (caps at both poles removed), as a scan crops a bone.
-  SurfaceMesh s = icosphere(50, 3);
+  SurfaceMesh s = makeIcosphere(50, 3);
   SurfaceMesh cropped = s;
   int k = 0;
   for (int t = 0; t < s.numTriangles(); ++t) {
@@ -437,23 +399,23 @@ TEST_F(SurfaceImportTest, NaNCoordinates) {
 
 TEST_F(SurfaceImportTest, WrongUnitsBy1000) {
   // A 100 mm head-sized sphere written in metres, and in micrometres.
-  SurfaceMesh metres = icosphere(0.05, 2);
+  SurfaceMesh metres = makeIcosphere(0.05, 2);
   std::string e = checkError(metres, "metres.stl", SurfaceRequirement::Closed);
   EXPECT_TRUE(contains(e, path("metres.stl"))) << e;
   EXPECT_TRUE(contains(e, "looks like metres: expected mm")) << e;
 
-  SurfaceMesh micro = icosphere(50000, 2);
+  SurfaceMesh micro = makeIcosphere(50000, 2);
   e = checkError(micro, "micro.obj", SurfaceRequirement::OpenAllowed);
   EXPECT_TRUE(contains(e, path("micro.obj"))) << e;
   EXPECT_TRUE(contains(e, "looks like µm: expected mm")) << e;
 
   // A 10 mm tooth crown is small but plausible.
-  SurfaceMesh tooth = icosphere(5, 2);
+  SurfaceMesh tooth = makeIcosphere(5, 2);
   EXPECT_NO_THROW(checkSurface(tooth, "tooth", SurfaceRequirement::Closed));
 }
 
 TEST_F(SurfaceImportTest, InconsistentlyOrientedTriangle) {
-  SurfaceMesh s = icosphere(50, 2);
+  SurfaceMesh s = makeIcosphere(50, 2);
   std::swap(s.triangles(1, 17), s.triangles(2, 17));
   const std::string e = checkError(s, "flipped.obj", SurfaceRequirement::Closed);
   EXPECT_TRUE(contains(e, path("flipped.obj"))) << e;
@@ -463,7 +425,7 @@ TEST_F(SurfaceImportTest, InconsistentlyOrientedTriangle) {
 }
 
 TEST_F(SurfaceImportTest, InwardSurfaceIsTurnedOutward) {
-  SurfaceMesh s = icosphere(50, 2);
+  SurfaceMesh s = makeIcosphere(50, 2);
   const double volume = s.signedVolume();
   s.triangles.row(1).swap(s.triangles.row(2));
   exportSurface(s, path("inward.stl"));
@@ -545,7 +507,7 @@ TEST_F(SurfaceImportTest, SelfIntersection) {
 
 TEST_F(SurfaceImportTest, EveryDefectIsListed) {
   // Open and with a flipped triangle, in metres: all three reasons in one message.
-  SurfaceMesh s = withoutTriangle(icosphere(0.05, 2), 3);
+  SurfaceMesh s = withoutTriangle(makeIcosphere(0.05, 2), 3);
   std::swap(s.triangles(1, 100), s.triangles(2, 100));
   const std::string e = errorOf([&] { checkSurface(s, "skin.stl", SurfaceRequirement::Closed); });
   EXPECT_EQ(e.rfind("skin.stl: ", 0), 0u) << e;

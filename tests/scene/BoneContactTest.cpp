@@ -15,6 +15,7 @@
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "mesh/TetgenIO.hpp"
+#include "mesh/SurfacePrimitives.hpp"
 #include "scene/BoneContact.hpp"
 #include "scene/SceneFile.hpp"
 
@@ -22,19 +23,6 @@ namespace fs = std::filesystem;
 
 namespace orthosim {
 namespace {
-
-// Axis-aligned box surface [lo, hi], 12 triangles, outward.
-SurfaceMesh boxSurface(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  SurfaceMesh m;
-  m.vertices.resize(3, 8);
-  for (int i = 0; i < 8; ++i)
-    m.vertices.col(i) << (i & 1 ? hi.x() : lo.x()), (i & 2 ? hi.y() : lo.y()), (i & 4 ? hi.z() : lo.z());
-  m.triangles.resize(3, 12);
-  m.triangles << 0, 0, 4, 4, 0, 0, 2, 2, 0, 0, 1, 1,  //
-      2, 3, 5, 7, 1, 5, 6, 7, 4, 6, 3, 7,             //
-      3, 1, 7, 6, 5, 4, 7, 3, 6, 2, 7, 5;
-  return m;
-}
 
 // One open square at height z, as a cropped bone surface would be: two triangles.
 SurfaceMesh square(double z, double half) {
@@ -59,7 +47,7 @@ TEST(BoneContact, SelectsCandidatesByTheirDistanceToABoxBone) {
   const TetMesh mesh = tissue();
   // Bone under the tissue's x <= 10 half, its top 1.5 mm below the tissue: a node at (x, y, z)
   // is z + 1.5 away when x <= 10, else sqrt((x - 10)^2 + (z + 1.5)^2).
-  const SurfaceMesh bone = boxSurface({-30, -30, -20}, {10, 30, -1.5});
+  const SurfaceMesh bone = makeBoxSurface({-30, -30, -20}, {10, 30, -1.5});
   const BoneContact c = nodesNearBone(mesh.rest, allNodes(mesh), bone, 6.0);
 
   std::vector<int> expected;
@@ -85,7 +73,7 @@ TEST(BoneContact, SelectsCandidatesByTheirDistanceToABoxBone) {
 
 TEST(BoneContact, MedianOfAnEvenCountIsTheMeanOfTheMiddleTwo) {
   const TetMesh mesh = tissue();
-  const SurfaceMesh bone = boxSurface({-30, -30, -20}, {10, 30, -1.5});
+  const SurfaceMesh bone = makeBoxSurface({-30, -30, -20}, {10, 30, -1.5});
   // One node at 1.5 mm (x = 0) and one at 5.22 mm (x = 15), both on y = z = 0.
   std::vector<int> two;
   for (int i = 0; i < mesh.numNodes(); ++i)
