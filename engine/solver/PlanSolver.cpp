@@ -17,16 +17,23 @@ BoundaryTargets targetsAt(const SimState& start, const PlanTargets& end, double 
   return t;
 }
 
+// Figures of the returned state: those of the last converged substep, or measured on the start
+// state when none converged.
 void summarize(Model& model, SolveResult& r) {
-  r.energy = model.energy().energy(r.state.x);
-  r.minDetF = model.energy().minDetF(r.state.x);
-  r.residual = 0.0;  // of the last converged substep: the state returned
+  bool any = false;
   for (const auto& s : r.substeps)
     if (s.converged) {
+      any = true;
+      r.energy = s.energy;
+      r.minDetF = s.minDetF;
       r.residual = s.residual;
       r.iterations += s.iterations;
       r.chordIterations += s.chordIterations;
     }
+  if (!any) {
+    r.energy = model.energy().energy(r.state.x);
+    r.minDetF = model.energy().minDetF(r.state.x);
+  }
 }
 
 }  // namespace
