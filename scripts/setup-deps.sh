@@ -14,6 +14,8 @@ PACKAGES=(
   libassimp-dev          # STL/OBJ/PLY surface import and export (engine/mesh/SurfaceImport)
   libcgal-dev            # exact self-intersection test of surfaces (engine/mesh/SelfIntersection)
   libtet1.5-dev          # TetGen 1.5: tetrahedralises closed surfaces (engine/mesh/Tetrahedralize)
+  libmeshoptimizer-dev   # surface simplification to coarse/fine skin counts (engine/mesh)
+  libturbojpeg0-dev      # JPEG: phantom skin texture, streamed frames
 )
 
 missing=()
