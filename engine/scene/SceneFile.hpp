@@ -3,19 +3,14 @@
 // file's folder. Every error names the file and the field (and the line of a node-set file).
 #include <string>
 
+#include "scene/JsonReader.hpp"
 #include "scene/Scene.hpp"
+#include "scene/SceneFields.hpp"
 
 namespace orthosim {
 
-// Reads a scene and everything it refers to; throws SceneError.
+// Reads an explicit scene (tetrahedra and node sets) and everything it refers to; throws
+// SceneError. Surface-based cases (a "bones" section) are read by scene/CaseFile.hpp.
 Scene loadSceneFile(const std::string& path);
-
-struct SceneError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// One 0-based node index per line ('#' comments and blank lines allowed), each checked against
-// numNodes. `field` names the scene field the file came from, for errors.
-std::vector<int> readNodeSet(const std::string& path, int numNodes, const std::string& field);
 
 }  // namespace orthosim
