@@ -1,0 +1,165 @@
+// Osteotomy templates on a set of landmarks (a stylised skull in the phantom's frame: +x posterior,
+// +y right, +z superior) and the split of bonded tissue into fragments with the 10 mm blend rule.
+#include <gtest/gtest.h>
+
+#include "scene/BoneFragments.hpp"
+#include "scene/Osteotomy.hpp"
+
+namespace orthosim {
+namespace {
+
+Landmarks skullLandmarks() {
+  return {{"nasion", {-40, 0, 60}},           {"PNS", {10, 0, 0}},
+          {"upper_incisor_apex", {-35, 0, 5}}, {"upper_incisor_tip", {-40, 0, -18}},
+          {"upper_canine_left", {-32, -16, -14}}, {"upper_canine_right", {-32, 16, -14}},
+          {"upper_molar_left", {-5, -25, -12}},   {"upper_molar_right", {-5, 25, -12}},
+          {"lower_canine_left", {-30, -14, -20}}, {"lower_canine_right", {-30, 14, -20}},
+          {"lower_molar_left", {-5, -23, -20}},   {"lower_molar_right", {-5, 23, -20}},
+          {"gonion_left", {35, -45, -50}},        {"gonion_right", {35, 45, -50}},
+          {"mental_foramen_left", {-25, -22, -40}}, {"mental_foramen_right", {-25, 22, -40}}};
+}
+
+const FragmentRegion* regionAt(const std::vector<FragmentRegion>& regions, const Eigen::Vector3d& x) {
+  const FragmentRegion* found = nullptr;
+  for (const auto& r : regions)
+    if (r.contains(x)) found = &r;
+  return found;
+}
+
+TEST(Osteotomy, LeFortOneTakesTheToothBearingMaxillaBelowTheApicesAndInFrontOfThePterygoids) {
+  OsteotomySpec cut{"le_fort_1", "skull"};
+  const auto regions = osteotomyRegions(cut, skullLandmarks());
+  ASSERT_EQ(regions.size(), 1u);
+  EXPECT_EQ(regions[0].name, "maxilla");
+  EXPECT_EQ(regions[0].parent, "skull");
+  EXPECT_TRUE(regions[0].contains({-40, 0, -18}));   // incisor tip
+  EXPECT_TRUE(regions[0].contains({-35, 0, 8.9}));   // just under the cut, 4 mm above the apex
+  EXPECT_FALSE(regions[0].contains({-35, 0, 9.1}));  // just above it
+  EXPECT_FALSE(regions[0].contains({-40, 0, 60}));   // nasion
+  EXPECT_FALSE(regions[0].contains({20, 0, -10}));   // behind the pterygomaxillary junction
+  cut.offset = 10;
+  EXPECT_TRUE(osteotomyRegions(cut, skullLandmarks())[0].contains({-35, 0, 14}));
+}
+
+TEST(Osteotomy, SegmentedMaxillaMakesThreePiecesThatPartitionTheLeFortOneLevel) {
+  const auto regions = osteotomyRegions({"segmented_maxilla", "skull"}, skullLandmarks());
+  ASSERT_EQ(regions.size(), 3u);
+  EXPECT_EQ(regionAt(regions, {-40, 0, -18})->name, "maxilla_anterior");
+  EXPECT_EQ(regionAt(regions, {-5, -25, -12})->name, "maxilla_left");
+  EXPECT_EQ(regionAt(regions, {-5, 25, -12})->name, "maxilla_right");
+  EXPECT_EQ(regionAt(regions, {-35, 0, 30}), nullptr);  // above the Le Fort I level: skull
+  // Every point of the maxilla below the cut belongs to exactly one piece.
+  for (double x = -45; x <= 5; x += 2.5)
+    for (double y = -28.75; y <= 30; y += 2.5) {  // off the midline, where the two posterior pieces meet
+      int n = 0;
+      for (const auto& r : regions) n += r.contains({x, y, -5});
+      EXPECT_EQ(n, 1) << x << " " << y;
+    }
+}
+
+TEST(Osteotomy, LeFortTwoIsPyramidalAndIncludesTheNasalBones) {
+  const auto regions = osteotomyRegions({"le_fort_2", "skull"}, skullLandmarks());
+  ASSERT_EQ(regions.size(), 1u);
+  EXPECT_TRUE(regions[0].contains({-40, 0, 45}));    // nasal bones, below the apex 8 mm under nasion
+  EXPECT_FALSE(regions[0].contains({-40, 0, 55}));   // above it
+  EXPECT_FALSE(regions[0].contains({-30, -45, 40})); // lateral orbit rim: outside the pyramid
+  EXPECT_TRUE(regions[0].contains({-30, -45, -10})); // low and lateral: maxilla
+  const auto lf1 = osteotomyRegions({"le_fort_1", "skull"}, skullLandmarks());
+  EXPECT_FALSE(lf1[0].contains({-40, 0, 45}));
+}
+
+TEST(Osteotomy, SagittalSplitsSeparateTheCondyleBearingRami) {
+  const auto both = osteotomyRegions({"bsso", "mandible"}, skullLandmarks());
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_EQ(regionAt(both, {35, -45, -50})->name, "ramus_left");
+  EXPECT_EQ(regionAt(both, {35, 45, -50})->name, "ramus_right");
+  EXPECT_EQ(regionAt(both, {-30, 0, -45}), nullptr);  // the chin stays with the tooth-bearing segment
+  EXPECT_EQ(regionAt(both, {-10, -23, -30}), nullptr);  // below the first molar: distal segment
+  OsteotomySpec one{"usso", "mandible"};
+  one.side = "right";
+  const auto right = osteotomyRegions(one, skullLandmarks());
+  ASSERT_EQ(right.size(), 1u);
+  EXPECT_EQ(right[0].name, "ramus_right");
+  EXPECT_FALSE(right[0].contains({35, -45, -50}));
+  one.side = "up";
+  EXPECT_THROW(osteotomyRegions(one, skullLandmarks()), std::invalid_argument);
+}
+
+TEST(Osteotomy, GenioplastyTakesTheChinBelowTheMentalForamina) {
+  const auto regions = osteotomyRegions({"genioplasty", "mandible"}, skullLandmarks());
+  ASSERT_EQ(regions.size(), 1u);
+  EXPECT_EQ(regions[0].name, "chin");
+  EXPECT_TRUE(regions[0].contains({-32, 0, -60}));   // menton region
+  EXPECT_FALSE(regions[0].contains({-32, 0, -40}));  // at the foramina level
+  EXPECT_FALSE(regions[0].contains({30, -40, -60})); // angle of the mandible
+}
+
+TEST(Osteotomy, ErrorsNameTheMissingLandmarkAndTheUnknownTemplate) {
+  Landmarks lm = skullLandmarks();
+  lm.erase("PNS");
+  try {
+    osteotomyRegions({"le_fort_1", "skull"}, lm);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'PNS'"), std::string::npos) << e.what();
+  }
+  try {
+    osteotomyRegions({"le_fort_3", "skull"}, lm);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("le_fort_3"), std::string::npos) << e.what();
+  }
+}
+
+// A column of bonded nodes crossing a horizontal cut at z = 0: the 10 mm rule of the paper.
+TEST(BoneFragments, NodesNearACutBlendLinearlyFromHalfAtTheCutToOneAtTenMillimetres) {
+  const int n = 41;
+  Eigen::Matrix3Xd rest(3, n);
+  BoneGroup skull{"skull", {}};
+  for (int i = 0; i < n; ++i) {
+    rest.col(i) << 0, 0, -20.0 + i;  // z from -20 to 20 mm
+    skull.nodes.push_back(i);
+  }
+  const FragmentRegion maxilla{"maxilla", "skull", {CutPlane{Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ()}}};
+  const FragmentCoupling c = splitBoneGroups(rest, {skull}, {maxilla});
+  ASSERT_EQ(c.fragments, (std::vector<std::string>{"skull", "maxilla"}));
+  EXPECT_EQ(c.fragmentBone[1], "skull");
+  std::vector<double> wMaxilla(n, -1);
+  for (int i : c.nodes[0]) wMaxilla[i] = 0;
+  for (int i : c.nodes[1]) wMaxilla[i] = 1;
+  for (const BlendedNode& b : c.blended) {
+    double sum = 0, w = 0;
+    for (const auto& [f, wf] : b.weights) {
+      sum += wf;
+      if (f == 1) w = wf;
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+    wMaxilla[b.node] = w;
+  }
+  for (int i = 0; i < n; ++i) {
+    const double z = rest(2, i);
+    const double expected = std::clamp(0.5 - z / 20.0, 0.0, 1.0);  // maxilla below the cut
+    EXPECT_NEAR(wMaxilla[i], expected, 1e-12) << "z = " << z;
+  }
+  EXPECT_EQ(c.blended.size(), 19u);  // |z| < 10
+}
+
+TEST(BoneFragments, AFragmentOfAFragmentInheritsItsParentsBoundsAndNamesAreUnique) {
+  Eigen::Matrix3Xd rest(3, 3);
+  rest << -30, 30, 30,  //
+      0, 0, 0,          //
+      -30, -30, 30;
+  BoneGroup g{"bone", {0, 1, 2}};
+  const FragmentRegion low{"low", "bone", {CutPlane{Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ()}}};
+  const FragmentRegion lowBack{"low_back", "low", {CutPlane{Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()}}};
+  const FragmentCoupling c = splitBoneGroups(rest, {g}, {low, lowBack});
+  EXPECT_EQ(c.nodes[c.fragmentIndex("low")], std::vector<int>{0});
+  EXPECT_EQ(c.nodes[c.fragmentIndex("low_back")], std::vector<int>{1});
+  EXPECT_EQ(c.nodes[c.fragmentIndex("bone")], std::vector<int>{2});  // above: x > 0 but not in "low"
+  EXPECT_THROW(splitBoneGroups(rest, {g}, {low, low}), std::invalid_argument);
+  EXPECT_THROW(splitBoneGroups(rest, {g}, {FragmentRegion{"x", "nothing", {}}}), std::invalid_argument);
+  EXPECT_THROW(splitBoneGroups(rest, {g}, {low}, 0.0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace orthosim
