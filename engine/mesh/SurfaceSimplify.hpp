@@ -25,7 +25,7 @@ struct SimplifyOptions {
   int skinTriangles = 3000;           // label-0 triangles wanted in all (coarse ~3000, fine ~20000)
   std::vector<RefineRegion> refine;
   double interfaceDensity = 1.0;      // solid patches: triangles per area relative to the plain skin
-  int maxRounds = 8;                  // of simplify-check-freeze, see simplifySurface
+  int maxRounds = 24;                 // of simplify-check-refine, see simplifySurface
 };
 
 struct SimplifyReport {
