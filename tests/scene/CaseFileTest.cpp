@@ -27,7 +27,10 @@ class CaseFileTest : public ::testing::Test {
             {"bones", {{{"name", "skull"}, {"surface", "skull.stl"}, {"fixed", true}},
                        {{"name", "mandible"}, {"surface", "mandible.stl"}}}},
             {"landmarks",
-             {{"hard", {{"upper_incisor_apex", {-35, 0, 5}}, {"PNS", {10, 0, 0}}}}, {"soft", {{"stomion", {-50, 0, -20}}}}}},
+             {{"hard",
+               {{"upper_incisor_apex", {-35, 0, 5}}, {"PNS", {10, 0, 0}}, {"upper_molar_left", {-5, -25, -12}},
+                {"upper_molar_right", {-5, 25, -12}}}},
+              {"soft", {{"stomion", {-50, 0, -20}}}}}},
             {"cuts", {{{"template", "le_fort_1"}, {"bone", "skull"}}}},
             {"plan", {{"maxilla", {{"translation_mm", {-5, 0, 0}}}}}}};
   }
@@ -65,7 +68,7 @@ TEST_F(CaseFileTest, ReadsBonesCutsLandmarksAndPlan) {
   ASSERT_EQ(c.meshing.refine.size(), 1u);
   EXPECT_EQ(c.meshing.refine[0].center, Eigen::Vector3d(-50, 0, -20));
   EXPECT_EQ(c.plan.at("maxilla").translation, Eigen::Vector3d(-5, 0, 0));
-  EXPECT_EQ(c.landmarks.size(), 3u);
+  EXPECT_EQ(c.landmarks.size(), 5u);
 }
 
 TEST_F(CaseFileTest, EachMistakeIsNamedWithItsField) {

@@ -37,6 +37,8 @@ TEST(Osteotomy, LeFortOneTakesTheToothBearingMaxillaBelowTheApicesAndInFrontOfTh
   EXPECT_FALSE(regions[0].contains({-35, 0, 9.1}));  // just above it
   EXPECT_FALSE(regions[0].contains({-40, 0, 60}));   // nasion
   EXPECT_FALSE(regions[0].contains({20, 0, -10}));   // behind the pterygomaxillary junction
+  EXPECT_TRUE(regions[0].contains({-5, -36, -12}));  // buttress, 11 mm outside the left molar
+  EXPECT_FALSE(regions[0].contains({-5, -38, -12})); // zygoma, 13 mm outside
   cut.offset = 10;
   EXPECT_TRUE(osteotomyRegions(cut, skullLandmarks())[0].contains({-35, 0, 14}));
 }
@@ -63,7 +65,8 @@ TEST(Osteotomy, LeFortTwoIsPyramidalAndIncludesTheNasalBones) {
   EXPECT_TRUE(regions[0].contains({-40, 0, 45}));    // nasal bones, below the apex 8 mm under nasion
   EXPECT_FALSE(regions[0].contains({-40, 0, 55}));   // above it
   EXPECT_FALSE(regions[0].contains({-30, -45, 40})); // lateral orbit rim: outside the pyramid
-  EXPECT_TRUE(regions[0].contains({-30, -45, -10})); // low and lateral: maxilla
+  EXPECT_TRUE(regions[0].contains({-30, -32, -10})); // low and lateral: maxilla
+  EXPECT_FALSE(regions[0].contains({-30, -40, -10})); // beyond 12 mm outside the molars: zygoma
   const auto lf1 = osteotomyRegions({"le_fort_1", "skull"}, skullLandmarks());
   EXPECT_FALSE(lf1[0].contains({-40, 0, 45}));
 }
