@@ -47,7 +47,7 @@ double spline(const Table& t, double x) {
 // The ramus outline, by distance from the posterior border: condyle, notch, coronoid, anterior border.
 const Table kRamusTop = {{0, 0.0},    {3, -0.5},   {6, -3.5},   {10, -12.0}, {14, -17.0}, {18, -13.5},
                          {22, -9.0},  {24.5, -8.5}, {28, -13.0}, {33, -25.0}, {39, -40.0}, {44, -48.0}};
-const Table kBottom = {{0, -87.0}, {8, -86.5}, {18, -84.0}, {30, -80.0}, {44, -75.0},
+const Table kBottom = {{0, -85.0}, {8, -84.7}, {18, -82.8}, {30, -79.5}, {44, -75.0},
                        {56, -71.0}, {66, -67.0}, {80, -62.0}, {200, -56.0}};
 const Table kCrownTilt = {{0, 1.2}, {8, 0.9}, {18, 0.4}, {30, 0.0}};  // incisors lean forward
 const Table kBodyHalf = {{0, 6.5}, {8, 6.4}, {18, 6.2}, {30, 6.0}, {44, 6.3}, {56, 6.0}, {66, 4.0}, {80, 3.8}};
