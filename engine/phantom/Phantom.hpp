@@ -59,7 +59,7 @@ struct Phantom {
 // Throws std::invalid_argument for an unknown variant or an edge length outside [0.5, 5] mm.
 Phantom makePhantom(const PhantomOptions& options = {});
 
-// Writes skin.obj (with uv, referencing skin.jpg through skin.mtl), skull.stl, mandible.stl,
+// Writes skin.obj (with uv; its texture is skin.jpg beside it, no .mtl), skull.stl, mandible.stl,
 // oral_cavity.stl, skin.jpg and landmarks.json ({"hard": {name: [x, y, z]}, "soft": {...}}) into
 // `dir`, creating it if needed. Throws std::runtime_error naming the path on failure.
 void writePhantom(const Phantom& phantom, const std::string& dir);
