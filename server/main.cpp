@@ -3,15 +3,24 @@
 #include <iostream>
 
 #include "cli/Commands.hpp"
+#include "scene/CaseTissue.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"orthosim: soft-tissue simulation for orthognathic surgery planning"};
   app.require_subcommand(1);
 
   std::string scene, out;
-  auto* solve = app.add_subcommand("solve", "Solve an explicit scene (JSON) and write deformed.node and result.json");
-  solve->add_option("scene", scene, "Scene file (JSON, see docs/scene-format.md)")->required()->check(CLI::ExistingFile);
+  auto* solve = app.add_subcommand("solve", "Solve a scene or surface-based case (JSON); write deformed nodes, skin and result.json");
+  solve->add_option("scene", scene, "Scene or case file (JSON, see docs/scene-format.md)")->required()->check(CLI::ExistingFile);
   solve->add_option("--out", out, "Output folder")->required();
+  std::string resolution = "coarse";
+  orthosim::cli::SolveOptions solveOptions;
+  solveOptions.cacheDir = orthosim::defaultCacheDir();
+  bool noCache = false;
+  solve->add_option("--resolution", resolution, "Surface cases: coarse (preview) or fine (confirm)")
+      ->check(CLI::IsMember({"coarse", "fine"}));
+  solve->add_option("--cache", solveOptions.cacheDir, "Folder of built tissue models (default: ~/.cache/orthosim)");
+  solve->add_flag("--no-cache", noCache, "Build the tissue model even if it is cached, and do not store it");
 
   std::string demoOut = "orthosim-demo";
   auto* demo = app.add_subcommand("demo", "Write the built-in demo scene and solve it (no data needed)");
@@ -22,6 +31,19 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--tets", bench.tetCounts, "Approximate tetrahedron counts")->delimiter(',');
   benchCmd->add_option("--repeats", bench.repeats, "Solves per size (median reported)")->check(CLI::Range(1, 100));
   benchCmd->add_option("--json", bench.jsonPath, "Also write the figures to this JSON file");
+  orthosim::cli::CaseBenchOptions caseBench;
+  bool benchPhantom = false;
+  benchCmd->add_option("--case", caseBench.casePath, "Time building a case's models instead (surface-based case file)")
+      ->check(CLI::ExistingFile);
+  benchCmd->add_flag("--phantom", benchPhantom, "Time building the phantom's coarse and fine models instead");
+  benchCmd->add_option("--variant", caseBench.phantomVariant, "Phantom variant for --phantom")->check(CLI::Range(0, 100));
+
+  int phantomVariant = 0;
+  std::string phantomOut = "phantom";
+  auto* phantom = app.add_subcommand("phantom", "Write the built-in phantom head as a surface-based case");
+  phantom->add_option("--out", phantomOut, "Output folder")->required();
+  phantom->add_option("--variant", phantomVariant, "Morphology variant (see --help of the case: 0 class I, ...)")
+      ->check(CLI::Range(0, 100));
 
   try {
     app.parse(argc, argv);
@@ -30,9 +52,19 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 1;
   }
   try {
-    if (*solve) return orthosim::cli::runSolve(scene, out);
+    if (*solve) {
+      solveOptions.resolution = resolution == "fine" ? orthosim::Resolution::Fine : orthosim::Resolution::Coarse;
+      if (noCache) solveOptions.cacheDir.clear();
+      return orthosim::cli::runSolve(scene, out, solveOptions);
+    }
     if (*demo) return orthosim::cli::runDemo(demoOut);
+    if (*benchCmd && (benchPhantom || !caseBench.casePath.empty())) {
+      caseBench.repeats = bench.repeats == 5 ? 3 : bench.repeats;
+      caseBench.jsonPath = bench.jsonPath;
+      return orthosim::cli::runCaseBench(caseBench);
+    }
     if (*benchCmd) return orthosim::cli::runBench(bench);
+    if (*phantom) return orthosim::cli::runPhantom(phantomVariant, phantomOut);
   } catch (const std::exception& e) {
     std::cerr << "orthosim: " << e.what() << "\n";
     return 1;

@@ -12,8 +12,18 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// name: [x, y, z], optionally grouped under "hard" and "soft"; a landmarks file may also say its
+// "units" (mm) and describe itself ("variant", "description").
 void readLandmarkObject(JsonReader r, Landmarks& out) {
   for (const auto& [name, value] : r.raw().items()) {
+    if (name == "units") {
+      if (r.string("units") != "mm") r.fail("only \"mm\" is supported", "units");
+      continue;
+    }
+    if (name == "variant" || name == "description") {
+      r.has(name);
+      continue;
+    }
     if (name == "hard" || name == "soft") {
       if (value.is_object()) {
         readLandmarkObject(r.child(name), out);

@@ -3,10 +3,18 @@
 #include <string>
 #include <vector>
 
+#include "scene/CaseFile.hpp"
+
 namespace orthosim::cli {
 
-// Exit codes: 0 converged, 1 bad input, 2 solve did not converge (outputs hold the last good state).
-int runSolve(const std::string& scenePath, const std::string& outDir);
+struct SolveOptions {
+  Resolution resolution = Resolution::Coarse;  // surface-based cases
+  std::string cacheDir;                        // built tissue cache; empty: none
+};
+
+// Solves an explicit scene or a surface-based case. Exit codes: 0 converged, 1 bad input, 2 solve
+// did not converge (outputs hold the last good state).
+int runSolve(const std::string& scenePath, const std::string& outDir, const SolveOptions& options = {});
 
 // Writes the built-in demo scene under outDir/scene and solves it into outDir/result.
 int runDemo(const std::string& outDir);
@@ -17,5 +25,16 @@ struct BenchOptions {
   std::string jsonPath;  // optional machine-readable copy of the table
 };
 int runBench(const BenchOptions& options);
+
+struct CaseBenchOptions {
+  std::string casePath;   // empty: the phantom
+  int phantomVariant = 0;
+  int repeats = 3;
+  std::string jsonPath;
+};
+int runCaseBench(const CaseBenchOptions& options);
+
+// Writes the built-in phantom head (variant N) as a surface-based case under outDir.
+int runPhantom(int variant, const std::string& outDir);
 
 }  // namespace orthosim::cli

@@ -4,7 +4,9 @@
 
 #include "cli/Commands.hpp"
 #include "eval/ResultJson.hpp"
+#include "mesh/SurfaceImport.hpp"
 #include "mesh/TetgenIO.hpp"
+#include "scene/CaseModel.hpp"
 #include "scene/SceneFile.hpp"
 #include "solver/PlanSolver.hpp"
 
@@ -26,10 +28,43 @@ void writeAtomically(const fs::path& path, const std::string& text) {
 
 }  // namespace
 
-int runSolve(const std::string& scenePath, const std::string& outDir) {
+namespace {
+
+// What a surface-based case adds to result.json: how its tissue was built and what was cut.
+nlohmann::json caseJson(const CaseModel& m) {
+  const MeshQuality& q = m.tissue.quality;
+  nlohmann::json fragments = nlohmann::json::array();
+  for (size_t f = 0; f < m.coupling.fragments.size(); ++f)
+    fragments.push_back({{"name", m.coupling.fragments[f]}, {"bone", m.coupling.fragmentBone[f]},
+                         {"bonded_nodes", m.coupling.nodes[f].size()}});
+  return {{"name", m.spec.name},
+          {"resolution", resolutionName(m.resolution)},
+          {"tissue",
+           {{"nodes", q.nodes}, {"tetrahedra", q.tets}, {"boundary_triangles", q.boundaryFaces},
+            {"min_dihedral_deg", q.minDihedralDeg}, {"max_radius_edge_ratio", q.maxRadiusEdgeRatio},
+            {"skin_vertices", m.tissue.skin.numVertices()}, {"from_cache", m.tissue.fromCache},
+            {"seconds", m.tissue.seconds}, {"report", m.tissue.report}}},
+          {"fragments", fragments},
+          {"blended_nodes", m.coupling.blended.size()},
+          {"warnings", m.warnings}};
+}
+
+}  // namespace
+
+int runSolve(const std::string& scenePath, const std::string& outDir, const SolveOptions& options) {
   std::unique_ptr<Model> model;
+  std::unique_ptr<CaseModel> caseModel;
   try {
-    model = std::make_unique<Model>(loadSceneFile(scenePath));
+    if (isCaseJson(parseJsonFile(scenePath))) {
+      CaseTissueOptions o;
+      o.cacheDir = options.cacheDir;
+      o.verbose = true;
+      caseModel = std::make_unique<CaseModel>(buildCaseModel(loadCaseFile(scenePath), options.resolution, o));
+      for (const auto& w : caseModel->warnings) std::cerr << "orthosim: warning: " << w << "\n";
+      model = std::make_unique<Model>(caseModel->scene);
+    } else {
+      model = std::make_unique<Model>(loadSceneFile(scenePath));
+    }
   } catch (const SceneError& e) {
     std::cerr << "orthosim: " << e.what() << "\n";
     return 1;
@@ -43,7 +78,19 @@ int runSolve(const std::string& scenePath, const std::string& outDir) {
     const fs::path tmpNode = fs::path(outDir) / "deformed.node.tmp";
     writeTetgenNodes(tmpNode.string(), result.state.x, model->scene().indexBase);
     fs::rename(tmpNode, fs::path(outDir) / "deformed.node");
-    writeAtomically(fs::path(outDir) / "result.json", resultToJson(*model, result).dump(2) + "\n");
+    nlohmann::json json = resultToJson(*model, result);
+    if (caseModel) {
+      // A meshed case's tetrahedra exist nowhere else: write them beside the deformed nodes.
+      writeTetgenNodes((fs::path(outDir) / "rest.node").string(), model->scene().mesh.rest, 0);
+      writeTetgenElements((fs::path(outDir) / "rest.ele").string(), model->scene().mesh.tets, 0);
+      if (caseModel->tissue.skin.numVertices() > 0) {
+        const fs::path tmp = fs::path(outDir) / "skin.tmp.obj";
+        exportSurface(caseModel->deformedSkin(result.state.x), tmp.string());
+        fs::rename(tmp, fs::path(outDir) / "skin.obj");
+      }
+      json["case"] = caseJson(*caseModel);
+    }
+    writeAtomically(fs::path(outDir) / "result.json", json.dump(2) + "\n");
   } catch (const std::exception& e) {
     std::cerr << "orthosim: cannot write results to " << outDir << ": " << e.what() << "\n";
     return 1;

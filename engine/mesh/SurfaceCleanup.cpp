@@ -1,0 +1,100 @@
+#include "mesh/SurfaceCleanup.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+namespace orthosim {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+int countSlivers(const Eigen::Matrix3Xd& V, const Eigen::Matrix3Xi& F, double* minAngle = nullptr) {
+  int n = 0;
+  double smallest = 180;
+  for (int t = 0; t < F.cols(); ++t) {
+    bool bad = false;
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d u = V.col(F((c + 1) % 3, t)) - V.col(F(c, t)), v = V.col(F((c + 2) % 3, t)) - V.col(F(c, t));
+      const double a = std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / 3.14159265358979323846;
+      smallest = std::min(smallest, a);
+      bad = bad || a < 1.0 || a > 179.0;
+    }
+    n += bad;
+  }
+  if (minAngle) *minAngle = smallest;
+  return n;
+}
+
+}  // namespace
+
+LabelledSurface removeSlivers(const LabelledSurface& in, double maxCollapseMm, double needleRatio, double capAngleDeg,
+                              CleanupReport* report) {
+  Mesh mesh;
+  std::vector<Mesh::Vertex_index> vi;
+  for (int i = 0; i < in.surface.numVertices(); ++i) {
+    const Eigen::Vector3d p = in.surface.vertices.col(i);
+    vi.push_back(mesh.add_vertex(Kernel::Point_3(p.x(), p.y(), p.z())));
+  }
+  auto label = mesh.add_property_map<Mesh::Face_index, int>("f:label", -1).first;
+  auto source = mesh.add_property_map<Mesh::Vertex_index, int>("v:source", -1).first;
+  for (int i = 0; i < in.surface.numVertices(); ++i) source[vi[i]] = i;
+  // uv per (input vertex, label-0 triangle side): a vertex keeps the uv it had in any skin corner;
+  // one uv per vertex is exact away from texture seams.
+  std::vector<Eigen::Vector2d> vertexUv(in.surface.numVertices(), Eigen::Vector2d::Constant(NAN));
+  for (int t = 0; t < in.surface.numTriangles(); ++t) {
+    const auto f = mesh.add_face(vi[in.surface.triangles(0, t)], vi[in.surface.triangles(1, t)], vi[in.surface.triangles(2, t)]);
+    if (f == Mesh::null_face()) throw std::runtime_error("removeSlivers: the boundary is not a manifold surface (triangle " + std::to_string(t) + ")");
+    label[f] = in.label[t];
+    if (in.hasUv() && in.label[t] == 0)
+      for (int c = 0; c < 3; ++c) vertexUv[in.surface.triangles(c, t)] = in.cornerUv.col(3 * t + c);
+  }
+  CleanupReport r;
+  r.trianglesBefore = in.surface.numTriangles();
+  r.needlesAndCapsBefore = countSlivers(in.surface.vertices, in.surface.triangles);
+
+  const double capCos = std::cos(capAngleDeg * 3.14159265358979323846 / 180.0);
+  for (int round = 0; round < 10; ++round)
+    if (PMP::experimental::remove_almost_degenerate_faces(mesh, capCos, needleRatio, maxCollapseMm)) break;
+  mesh.collect_garbage();
+
+  LabelledSurface out;
+  out.warnings = in.warnings;
+  std::map<Mesh::Vertex_index, int> index;
+  out.surface.vertices.resize(3, mesh.number_of_vertices());
+  std::vector<int> src;
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    const int k = static_cast<int>(index.size());
+    index[v] = k;
+    out.surface.vertices.col(k) << p.x(), p.y(), p.z();
+    src.push_back(source[v]);
+  }
+  out.surface.triangles.resize(3, mesh.number_of_faces());
+  out.label.resize(mesh.number_of_faces());
+  if (in.hasUv()) out.cornerUv = Eigen::Matrix2Xd::Constant(2, 3 * mesh.number_of_faces(), NAN);
+  int t = 0;
+  for (auto f : mesh.faces()) {
+    int c = 0;
+    for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) {
+      out.surface.triangles(c, t) = index[v];
+      if (in.hasUv() && label[f] == 0) out.cornerUv.col(3 * t + c) = vertexUv[src[index[v]]];
+      ++c;
+    }
+    out.label[t] = label[f];
+    ++t;
+  }
+  r.trianglesAfter = out.surface.numTriangles();
+  r.needlesAndCapsAfter = countSlivers(out.surface.vertices, out.surface.triangles, &r.minAngleDegAfter);
+  if (!CGAL::is_closed(mesh)) throw std::runtime_error("removeSlivers: the cleaned boundary is not closed");
+  if (report) *report = r;
+  return out;
+}
+
+}  // namespace orthosim

@@ -1,0 +1,27 @@
+#pragma once
+// Needles and caps out of a labelled tissue boundary before TetGen. Corefinement leaves them along
+// the curves where surfaces cross (a seam vertex a hair from an existing one), and the patch-wise
+// simplification keeps seams as they are; with the surface preserved (-Y), TetGen then has to fill
+// them with flat tetrahedra. CGAL's remove_almost_degenerate_faces collapses short edges and flips
+// cap edges; a collapse moves a vertex by at most `maxCollapseMm`, so tissue nodes stay within that
+// distance of the surface their label says. In the orthosim_cgal target; no CGAL type here.
+#include "mesh/LabelledSurface.hpp"
+
+namespace orthosim {
+
+struct CleanupReport {
+  int needlesAndCapsBefore = 0;  // triangles with an angle under 1 degree or over 179 degrees
+  int needlesAndCapsAfter = 0;
+  int trianglesBefore = 0, trianglesAfter = 0;
+  double minAngleDegAfter = 0;
+};
+
+// Removes triangles whose longest edge exceeds `needleRatio` times the shortest (collapsing that
+// edge when it is shorter than maxCollapseMm) or whose largest angle exceeds `capAngleDeg`
+// (flipping its longest edge). Labels follow the surviving triangles; uv corners are re-read from
+// the input triangle each corner vertex came from. Throws std::runtime_error when the result is not
+// a closed manifold surface.
+LabelledSurface removeSlivers(const LabelledSurface& in, double maxCollapseMm, double needleRatio = 6.0,
+                              double capAngleDeg = 165.0, CleanupReport* report = nullptr);
+
+}  // namespace orthosim

@@ -1,0 +1,43 @@
+#include "phantom/PhantomCase.hpp"
+
+#include <filesystem>
+#include <fstream>
+
+namespace orthosim {
+
+nlohmann::json phantomCaseJson(const Phantom& p) {
+  using nlohmann::json;
+  return {{"units", "mm"},
+          {"name", "phantom " + p.variant.name},
+          {"frame", {{"anterior", {-1, 0, 0}}, {"superior", {0, 0, 1}}, {"right", {0, 1, 0}}}},
+          {"tissue", {{"skin", "skin.obj"}, {"cavities", {"oral_cavity.stl"}}, {"texture", "skin.jpg"}}},
+          {"bones", {{{"name", "skull"}, {"surface", "skull.stl"}, {"fixed", true}},
+                     {{"name", "mandible"}, {"surface", "mandible.stl"}}}},
+          {"landmarks", "landmarks.json"},
+          {"cuts", {{{"template", "le_fort_1"}, {"bone", "skull"}}, {{"template", "bsso"}, {"bone", "mandible"}}}},
+          // Where clinicians look: lips, nose and chin get three and two times the skin density.
+          {"meshing",
+           {{"refine",
+             {{{"landmark", "stomion"}, {"radius_mm", 25}, {"density", 3}},
+              {{"landmark", "pronasale"}, {"radius_mm", 18}, {"density", 3}},
+              {{"landmark", "soft_pogonion"}, {"radius_mm", 18}, {"density", 2}}}}}},
+          {"plan", {{"maxilla", {{"translation_mm", {-5, 0, 0}}}}}}};
+}
+
+std::string writePhantomCase(int variant, const std::string& dir) {
+  PhantomOptions options;
+  options.variant = variant;
+  const Phantom phantom = makePhantom(options);
+  writePhantom(phantom, dir);
+  const std::filesystem::path path = std::filesystem::path(dir) / "case.json";
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << phantomCaseJson(phantom).dump(2) << "\n";
+    if (!out.flush()) throw std::runtime_error(tmp.string() + ": cannot write the phantom case");
+  }
+  std::filesystem::rename(tmp, path);
+  return path.string();
+}
+
+}  // namespace orthosim

@@ -1,0 +1,197 @@
+// The built-in phantom through the whole surface path: written as a case, meshed at coarse and
+// fine resolution (Boolean difference, simplification, TetGen), cut by the osteotomy templates,
+// solved. Checks what the issue asks: the expected fragments and groups, exact couplings, the
+// 10 mm blend rule, the cache, and coarse against fine within 1 mm on 95% of the skin.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "mesh/SurfaceDistance.hpp"
+#include "mesh/SurfaceImport.hpp"
+#include "phantom/PhantomCase.hpp"
+#include "scene/CaseModel.hpp"
+#include "solver/PlanSolver.hpp"
+
+namespace fs = std::filesystem;
+
+namespace orthosim {
+namespace {
+
+// One phantom, meshed once per resolution for the whole suite (meshing takes seconds).
+class PhantomCase : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(fs::temp_directory_path() / ("orthosim_phantom_case_" + std::to_string(::getpid())));
+    casePath_ = new std::string(writePhantomCase(0, (*dir_ / "case").string()));
+    spec_ = new CaseSpec(loadCaseFile(*casePath_));
+    coarse_ = new CaseModel(buildCaseModel(*spec_, Resolution::Coarse, {(*dir_ / "cache").string()}));
+  }
+  static void TearDownTestSuite() {
+    delete coarse_;
+    delete spec_;
+    delete casePath_;
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+  static const CaseModel& coarse() { return *coarse_; }
+  static const CaseSpec& spec() { return *spec_; }
+  static fs::path dir() { return *dir_; }
+
+  static Eigen::Matrix3Xd nodes(const TetMesh& mesh, const std::vector<int>& ids) {
+    Eigen::Matrix3Xd p(3, ids.size());
+    for (size_t k = 0; k < ids.size(); ++k) p.col(k) = mesh.rest.col(ids[k]);
+    return p;
+  }
+
+ private:
+  static inline fs::path* dir_ = nullptr;
+  static inline std::string* casePath_ = nullptr;
+  static inline CaseSpec* spec_ = nullptr;
+  static inline CaseModel* coarse_ = nullptr;
+};
+
+TEST_F(PhantomCase, DefaultCutsMakeTheExpectedFragmentsEachWithTissue) {
+  const FragmentCoupling& c = coarse().coupling;
+  EXPECT_EQ(c.fragments, (std::vector<std::string>{"skull", "mandible", "maxilla", "ramus_left", "ramus_right"}));
+  for (size_t f = 0; f < c.fragments.size(); ++f) EXPECT_GE(c.nodes[f].size(), 5u) << c.fragments[f];
+  EXPECT_EQ(c.fragmentBone, (std::vector<std::string>{"skull", "mandible", "skull", "mandible", "mandible"}));
+  EXPECT_GT(c.blended.size(), 20u);
+  for (const auto& w : coarse().warnings) std::cout << "warning: " << w << "\n";
+  // The maxilla's tissue lies below the Le Fort I plane and in front of the pterygoid plates.
+  const FragmentRegion& maxilla = spec().regions[0];
+  for (int i : c.nodes[2]) EXPECT_TRUE(maxilla.contains(coarse().tissue.mesh.rest.col(i))) << i;
+}
+
+// Bonded nodes are vertices of the Boolean difference, so they lie on their bone; the needle and
+// cap clean-up may move a few by up to the collapse bound (2 mm) along the surface.
+TEST_F(PhantomCase, BondedNodesLieOnTheirBone) {
+  for (size_t b = 0; b < spec().bones.size(); ++b) {
+    const SurfaceMesh bone = importSurface(spec().bones[b].surface);
+    const auto& ids = coarse().tissue.boneNodes[b];
+    ASSERT_GT(ids.size(), 50u) << spec().bones[b].name;
+    // The bone file is single precision (assimp); the tissue keeps the Boolean's own vertices.
+    const Eigen::VectorXd d = distancesToSurface(bone.vertices, bone.triangles, nodes(coarse().tissue.mesh, ids));
+    const double exact = (d.array() < 1e-3).cast<double>().mean();
+    std::cout << spec().bones[b].name << ": " << 100 * exact << "% of " << ids.size()
+              << " bonded nodes on the bone to 1e-3 mm, farthest " << d.maxCoeff() << " mm\n";
+    EXPECT_GT(exact, 0.95) << spec().bones[b].name;
+    EXPECT_LT(d.maxCoeff(), 2.0 + 1e-6) << spec().bones[b].name;
+  }
+}
+
+TEST_F(PhantomCase, BlendWeightsFollowTheTenMillimetreRule) {
+  // Each blended node's weight on its own fragment is 0.5 + d / 20 for its distance d to a cut
+  // plane; d < 10 mm, so both weights lie in (0, 1) and own >= 0.5.
+  const Eigen::Matrix3Xd& X = coarse().tissue.mesh.rest;
+  for (const BlendedNode& b : coarse().coupling.blended) {
+    ASSERT_EQ(b.weights.size(), 2u);
+    const double own = b.weights[0].second;
+    EXPECT_GE(own, 0.5);
+    EXPECT_LT(own, 1.0);
+    const double d = (own - 0.5) * 20.0;
+    bool onPlane = false;
+    for (const FragmentRegion& r : spec().regions)
+      for (const CutPlane& p : r.bounds) onPlane = onPlane || std::abs(std::abs(p.signedDistance(X.col(b.node))) - d) < 1e-9;
+    EXPECT_TRUE(onPlane) << "node " << b.node;
+  }
+}
+
+TEST_F(PhantomCase, EveryTemplateCutsThePhantom) {
+  const std::vector<std::pair<std::string, std::string>> cuts = {
+      {"le_fort_2", "skull"}, {"segmented_maxilla", "skull"}, {"usso", "mandible"}, {"genioplasty", "mandible"}};
+  for (const auto& [kind, bone] : cuts) {
+    CaseSpec s = spec();
+    s.plan.clear();
+    OsteotomySpec cut{kind, bone};
+    cut.side = "left";
+    s.regions = osteotomyRegions(cut, s.landmarks, s.frame);
+    FragmentCoupling c;
+    caseScene(s, coarse().tissue, &c);
+    for (const FragmentRegion& r : s.regions) {
+      const int f = c.fragmentIndex(r.name);
+      EXPECT_GE(c.nodes[f].size(), 3u) << kind << ": " << r.name;
+    }
+  }
+}
+
+TEST_F(PhantomCase, ASecondOpenReadsTheCacheAndGivesTheSameModel) {
+  const CaseTissue again = buildCaseTissue(spec(), Resolution::Coarse, {(dir() / "cache").string()});
+  EXPECT_TRUE(again.fromCache);
+  EXPECT_FALSE(coarse().tissue.fromCache);
+  EXPECT_EQ(again.mesh.rest, coarse().tissue.mesh.rest);
+  EXPECT_EQ(again.mesh.tets, coarse().tissue.mesh.tets);
+  EXPECT_EQ(again.boneNodes, coarse().tissue.boneNodes);
+  EXPECT_LT(again.seconds, 0.5);
+  // Another input is another key.
+  CaseSpec other = spec();
+  other.meshing.coarseSkinTriangles += 1;
+  EXPECT_NE(caseTissueKey(other, Resolution::Coarse), caseTissueKey(spec(), Resolution::Coarse));
+  EXPECT_NE(caseTissueKey(spec(), Resolution::Fine), caseTissueKey(spec(), Resolution::Coarse));
+}
+
+TEST_F(PhantomCase, MeshingIsDeterministic) {
+  const CaseTissue again = buildCaseTissue(spec(), Resolution::Coarse, {});
+  EXPECT_FALSE(again.fromCache);
+  EXPECT_EQ(again.mesh.rest, coarse().tissue.mesh.rest);
+  EXPECT_EQ(again.mesh.tets, coarse().tissue.mesh.tets);
+}
+
+// Plausibility (clinical primer): after a 5 mm Le Fort I advancement the upper lip follows the
+// maxilla by roughly half or more, the nose tip less, and the chin stays.
+// Disabled until issue 3's open point is fixed: on the phantom the coarse solve converges but takes
+// about 100 s (60 substeps), so it stays out of the default run. Run with
+// --gtest_also_run_disabled_tests.
+TEST_F(PhantomCase, DISABLED_AdvancementMovesTheUpperLipAndNotTheChin) {
+  Model model(coarse().scene);
+  const SolveResult r = solveScene(model);
+  ASSERT_TRUE(r.converged) << r.error;
+  const auto& lm = spec().landmarks;
+  Eigen::Matrix3Xd points(3, 3);
+  points << lm.at("labrale_superius"), lm.at("pronasale"), lm.at("soft_pogonion");
+  const PointEmbedding e = embedPoints(coarse().tissue.mesh, points);
+  const Eigen::Matrix3Xd moved = e.apply(r.state.x) - e.apply(coarse().tissue.mesh.rest);
+  const Eigen::Vector3d anterior = spec().frame.anterior;
+  const double lip = moved.col(0).dot(anterior) / 5.0, nose = moved.col(1).dot(anterior) / 5.0,
+               chin = moved.col(2).dot(anterior) / 5.0;
+  std::cout << "5 mm advancement: upper lip " << lip << ", nose tip " << nose << ", chin " << chin << "\n";
+  EXPECT_GT(lip, 0.4);
+  EXPECT_LT(lip, 1.05);
+  EXPECT_LT(nose, lip);
+  EXPECT_LT(std::abs(chin), 0.2);
+}
+
+// The issue's acceptance: a 5 mm advancement predicted on the coarse and the fine model agrees
+// within 1 mm on 95% of the skin area (full-resolution skin, the same for both).
+// Disabled for the same reason (issue 3 open): the phantom's solves take minutes today.
+TEST_F(PhantomCase, DISABLED_CoarseAndFineAgreeWithinOneMillimetreOnNinetyFivePercentOfTheSkin) {
+  const CaseModel fine = buildCaseModel(spec(), Resolution::Fine, {(dir() / "cache").string()});
+  EXPECT_GT(fine.tissue.skinTriangles, 4 * coarse().tissue.skinTriangles);
+  const auto predict = [](const CaseModel& m) {
+    Model model(m.scene);
+    const SolveResult r = solveScene(model);
+    EXPECT_TRUE(r.converged) << r.error;
+    EXPECT_GT(r.minDetF, 0.0);
+    return m.deformedSkin(r.state.x);
+  };
+  const SurfaceMesh a = predict(coarse()), b = predict(fine);
+  ASSERT_EQ(a.numVertices(), b.numVertices());
+  // Area per vertex: a third of each adjacent triangle.
+  Eigen::VectorXd area = Eigen::VectorXd::Zero(a.numVertices());
+  for (int t = 0; t < a.numTriangles(); ++t)
+    for (int c = 0; c < 3; ++c) area[a.triangles(c, t)] += a.areaVector(t).norm() / 6.0;
+  double within = 0, maxMoved = 0;
+  for (int i = 0; i < a.numVertices(); ++i) {
+    if ((a.vertices.col(i) - b.vertices.col(i)).norm() <= 1.0) within += area[i];
+    maxMoved = std::max(maxMoved, (b.vertices.col(i) - coarse().tissue.skin.vertices.col(i)).norm());
+  }
+  const double share = within / area.sum();
+  std::cout << "coarse " << coarse().tissue.skinTriangles << " vs fine " << fine.tissue.skinTriangles
+            << " skin triangles: " << 100 * share << "% of the skin within 1 mm; largest skin motion " << maxMoved << " mm\n";
+  EXPECT_GT(maxMoved, 3.0);  // the plan really moved the face
+  EXPECT_GE(share, 0.95);
+}
+
+}  // namespace
+}  // namespace orthosim

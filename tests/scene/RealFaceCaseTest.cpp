@@ -1,0 +1,155 @@
+// The real ArtiSynth face (../shared/cases/artisynth_face) loaded as a case, through the same code
+// path as user data: tetrahedra, bone surfaces, node sets. It gives node sets for the skull and the
+// mandible but none for the maxilla, so the tissue on the maxilla is derived from the deep surface
+// near the bone and joins the skull's set as one midface bone; a Le Fort I cut then separates the
+// maxilla, blended over 10 mm at the cut as for any case. A Le Fort I advancement and a mandibular
+// setback move the face as published ratios say. Skipped without ../shared.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "mesh/SurfaceDistance.hpp"
+#include "mesh/SurfaceImport.hpp"
+#include "scene/CaseModel.hpp"
+#include "scene/SceneFields.hpp"
+#include "solver/PlanSolver.hpp"
+
+namespace fs = std::filesystem;
+
+namespace orthosim {
+namespace {
+
+const fs::path kFace = fs::path(ORTHOSIM_SHARED_DIR) / "cases" / "artisynth_face";
+
+class RealFaceCase : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(kFace / "face_volume.node")) GTEST_SKIP() << "no shared data at " << kFace;
+    dir_ = fs::temp_directory_path() / ("orthosim_face_case_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!dir_.empty()) fs::remove_all(dir_);
+  }
+
+  // The case file as a user would write it, pointing into ../shared (never copied).
+  CaseSpec writeCase(const nlohmann::json& plan) {
+    const auto f = [](const char* name) { return (kFace / name).string(); };
+    const nlohmann::json c = {
+        {"name", "artisynth face"},
+        {"frame", {{"anterior", {-1, 0, 0}}, {"superior", {0, 0, 1}}, {"right", {0, 1, 0}}}},
+        {"tissue", {{"node", f("face_volume.node")}, {"ele", f("face_volume.ele")}, {"skin", f("face_surface.obj")}}},
+        {"bones",
+         {{{"name", "midface"}, {"surface", f("maxilla.obj")}, {"nodes", f("fixed_to_skull.txt")}, {"derive", true},
+           {"candidates", f("deep_surface.txt")}, {"bond_distance_mm", 2.0}, {"fixed", true}},
+          {{"name", "mandible"}, {"surface", f("mandible.obj")}, {"nodes", f("attached_to_mandible.txt")}}}},
+        // Read off maxilla.obj: incisor tip at z 99 mm, so the apex about 23 mm above it; the
+        // palate's back end; the first molars.
+        {"landmarks",
+         {{"upper_incisor_apex", {52, 0, 122}}, {"PNS", {106.5, 0, 123.6}}, {"upper_molar_left", {80, -25, 103}},
+          {"upper_molar_right", {80, 25, 103}}}},
+        {"cuts", {{{"template", "le_fort_1"}, {"bone", "midface"}}}},
+        {"plan", plan}};
+    std::ofstream(dir_ / "case.json") << c.dump(2);
+    return loadCaseFile((dir_ / "case.json").string());
+  }
+
+  // Most anterior (smallest x) midline skin vertex in a height band.
+  static int anteriorMost(const SurfaceMesh& skin, double zLo, double zHi) {
+    int best = -1;
+    for (int i = 0; i < skin.numVertices(); ++i) {
+      const Eigen::Vector3d p = skin.vertices.col(i);
+      if (std::abs(p.y()) > 4 || p.z() < zLo || p.z() > zHi) continue;
+      if (best < 0 || p.x() < skin.vertices(0, best)) best = i;
+    }
+    return best;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(RealFaceCase, DerivesTheMaxillaGroupFromTheDeepSurfaceAndReportsIt) {
+  const CaseModel m = buildCaseModel(writeCase(nlohmann::json::object()), Resolution::Coarse);
+  ASSERT_EQ(m.tissue.boneNodes.size(), 2u);
+  // The skull's 954 nodes plus those derived near the maxilla (none taken from the mandible's set).
+  const std::vector<int>& midface = m.tissue.boneNodes[0];
+  const std::vector<int> skull = readNodeSet((kFace / "fixed_to_skull.txt").string(), m.tissue.mesh.numNodes(), "skull");
+  EXPECT_GT(midface.size(), skull.size() + 50);
+  std::vector<char> mandible(m.tissue.mesh.numNodes(), 0), inSkull(m.tissue.mesh.numNodes(), 0);
+  for (int i : m.tissue.boneNodes[1]) mandible[i] = 1;
+  for (int i : skull) inSkull[i] = 1;
+  std::vector<int> derived;
+  for (int i : midface) {
+    EXPECT_FALSE(mandible[i]) << "node " << i;
+    if (!inSkull[i]) derived.push_back(i);
+  }
+  // The report says how many and how far, and every derived node is within the bound.
+  bool reported = false;
+  for (const auto& line : m.tissue.report)
+    reported = reported || (line.find("midface: ") == 0 && line.find("candidate nodes within 2 mm") != std::string::npos);
+  EXPECT_TRUE(reported);
+  const SurfaceMesh bone = importSurface((kFace / "maxilla.obj").string());
+  Eigen::Matrix3Xd pts(3, derived.size());
+  for (size_t k = 0; k < derived.size(); ++k) pts.col(k) = m.tissue.mesh.rest.col(derived[k]);
+  EXPECT_LE(distancesToSurface(bone.vertices, bone.triangles, pts).maxCoeff(), 2.0 + 1e-9);
+  // The cut makes the maxilla, with blended tissue at the Le Fort I level.
+  EXPECT_EQ(m.coupling.fragments, (std::vector<std::string>{"midface", "mandible", "maxilla"}));
+  EXPECT_GT(m.coupling.nodes[2].size(), 100u);
+  EXPECT_GT(m.coupling.blended.size(), 50u);
+  // Bone groups win over the fixed set: no node is both fixed and bonded.
+  std::vector<char> bonded(m.scene.mesh.numNodes(), 0);
+  for (const auto& f : m.scene.fragments)
+    for (int i : f.nodes) bonded[i] = 1;
+  for (const auto& f : m.scene.fixed)
+    for (int i : f.nodes) EXPECT_FALSE(bonded[i]) << "node " << i;
+  // The skin is the mesh's own boundary, read back in single precision (assimp).
+  EXPECT_LT(m.skinEmbedding.maxOutsideDistance(), 1e-4);
+}
+
+TEST_F(RealFaceCase, LeFortOneAdvancementMovesTheUpperLipAndLittleElse) {
+  const double advance = 5.0;  // mm toward -x (anterior)
+  const CaseModel m = buildCaseModel(writeCase({{"maxilla", {{"translation_mm", {-advance, 0, 0}}}}}), Resolution::Coarse);
+  Model model(m.scene);
+  const SolveResult r = solveScene(model);
+  ASSERT_TRUE(r.converged) << r.error;
+  EXPECT_GT(r.minDetF, 0.0);
+  const SurfaceMesh rest = m.deformedSkin(m.scene.mesh.rest);
+  const SurfaceMesh moved = m.deformedSkin(r.state.x);
+  ASSERT_TRUE(moved.vertices.allFinite());
+  EXPECT_LT((rest.vertices - m.tissue.skin.vertices).cwiseAbs().maxCoeff(), 1e-9);
+  const int nose = anteriorMost(rest, 0, 1e9);                       // pronasale
+  const int chin = anteriorMost(rest, 50, 70);                       // soft pogonion
+  const auto forward = [&](int i) { return (rest.vertices(0, i) - moved.vertices(0, i)) / advance; };
+  // Upper lip: the most anterior midline point between the nose tip and 25 mm below it.
+  const double zNose = rest.vertices(2, nose);
+  const int lip = anteriorMost(rest, zNose - 35, zNose - 15);
+  ASSERT_GE(lip, 0);
+  std::cout << "Le Fort I +" << advance << " mm: upper lip " << forward(lip) << ", nose tip " << forward(nose)
+            << ", chin " << forward(chin) << " of the advancement\n";
+  EXPECT_GT(forward(lip), 0.3);  // primer: upper lip follows the maxilla by about 0.5-0.9
+  EXPECT_LT(forward(lip), 1.1);
+  EXPECT_LT(std::abs(forward(chin)), 0.2);
+  EXPECT_LT(forward(nose), 0.5);
+}
+
+TEST_F(RealFaceCase, MandibularSetbackMovesTheChinWithTheBone) {
+  const double setback = 5.0;  // mm toward +x (posterior)
+  const CaseModel m = buildCaseModel(writeCase({{"mandible", {{"translation_mm", {setback, 0, 0}}}}}), Resolution::Coarse);
+  Model model(m.scene);
+  const SolveResult r = solveScene(model);
+  ASSERT_TRUE(r.converged) << r.error;
+  const SurfaceMesh rest = m.deformedSkin(m.scene.mesh.rest), moved = m.deformedSkin(r.state.x);
+  const int chin = anteriorMost(rest, 50, 70), nose = anteriorMost(rest, 0, 1e9);  // soft pogonion, pronasale
+  const double c = (moved.vertices(0, chin) - rest.vertices(0, chin)) / setback;
+  const double n = (moved.vertices(0, nose) - rest.vertices(0, nose)) / setback;
+  std::cout << "setback " << setback << " mm: chin " << c << ", nose " << n << "\n";
+  EXPECT_GT(c, 0.8);
+  EXPECT_LT(c, 1.1);
+  EXPECT_LT(std::abs(n), 0.05);
+}
+
+}  // namespace
+}  // namespace orthosim
