@@ -3,6 +3,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 
 #include <cmath>
 #include <map>
@@ -32,6 +33,60 @@ int countSlivers(const Eigen::Matrix3Xd& V, const Eigen::Matrix3Xi& F, double* m
   return n;
 }
 
+// Seams between labels keep the Boolean's vertex spacing (down to hundredths of a mm) through the
+// patch-wise simplification, and force tiny tetrahedra along them. Collapses seam edges shorter
+// than minEdge along the seam: the removed vertex is a plain seam vertex (two seam edges), it goes
+// to its neighbour on the seam, and only when no incident triangle turns over or degenerates.
+int coarsenSeams(Mesh& mesh, const Mesh::Property_map<Mesh::Face_index, int>& label,
+                 Mesh::Property_map<Mesh::Vertex_index, int>& source, double minEdge) {
+  const auto isSeam = [&](Mesh::Halfedge_index h) {
+    return label[mesh.face(h)] != label[mesh.face(mesh.opposite(h))];
+  };
+  const auto seamDegree = [&](Mesh::Vertex_index v) {
+    int n = 0;
+    for (auto h : CGAL::halfedges_around_target(v, mesh)) n += isSeam(h);
+    return n;
+  };
+  const auto vec = [&](Mesh::Vertex_index v) {
+    const auto& p = mesh.point(v);
+    return Eigen::Vector3d(p.x(), p.y(), p.z());
+  };
+  int collapsed = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (auto e : mesh.edges()) {
+      if (mesh.is_removed(e)) continue;
+      auto h = mesh.halfedge(e);
+      if (!isSeam(h)) continue;
+      for (int side = 0; side < 2; ++side, h = mesh.opposite(h)) {
+        const auto gone = mesh.source(h), kept = mesh.target(h);
+        if ((vec(gone) - vec(kept)).norm() >= minEdge || seamDegree(gone) != 2) continue;
+        if (!CGAL::Euler::does_satisfy_link_condition(e, mesh)) continue;
+        // Triangles around `gone`, other than the two on the edge, with `gone` moved onto `kept`.
+        bool ok = true;
+        for (auto g : CGAL::halfedges_around_target(gone, mesh)) {
+          const auto f = mesh.face(g);
+          if (f == mesh.face(h) || f == mesh.face(mesh.opposite(h))) continue;
+          const Eigen::Vector3d a = vec(mesh.source(g)), b = vec(mesh.target(mesh.next(g)));
+          const Eigen::Vector3d before = (vec(gone) - a).cross(b - a), after = (vec(kept) - a).cross(b - a);
+          if (after.norm() < 0.05 * before.norm() || after.dot(before) < 0.2 * after.norm() * before.norm()) ok = false;
+        }
+        if (!ok) continue;
+        // collapse_edge removes the source of halfedge(e) and leaves the target where it is.
+        const auto keptPoint = mesh.point(kept);
+        const int keptSource = source[kept];
+        const auto survivor = CGAL::Euler::collapse_edge(e, mesh);
+        mesh.point(survivor) = keptPoint;
+        source[survivor] = keptSource;
+        ++collapsed;
+        changed = true;
+        break;
+      }
+    }
+  }
+  return collapsed;
+}
+
 }  // namespace
 
 LabelledSurface removeSlivers(const LabelledSurface& in, double maxCollapseMm, double needleRatio, double capAngleDeg,
@@ -59,6 +114,7 @@ LabelledSurface removeSlivers(const LabelledSurface& in, double maxCollapseMm, d
   r.trianglesBefore = in.surface.numTriangles();
   r.needlesAndCapsBefore = countSlivers(in.surface.vertices, in.surface.triangles);
 
+  r.seamEdgesCollapsed = coarsenSeams(mesh, label, source, maxCollapseMm);
   const double capCos = std::cos(capAngleDeg * 3.14159265358979323846 / 180.0);
   for (int round = 0; round < 10; ++round)
     if (PMP::experimental::remove_almost_degenerate_faces(mesh, capCos, needleRatio, maxCollapseMm)) break;

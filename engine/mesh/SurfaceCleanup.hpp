@@ -13,10 +13,12 @@ struct CleanupReport {
   int needlesAndCapsBefore = 0;  // triangles with an angle under 1 degree or over 179 degrees
   int needlesAndCapsAfter = 0;
   int trianglesBefore = 0, trianglesAfter = 0;
+  int seamEdgesCollapsed = 0;    // seam edges shorter than maxCollapseMm collapsed along the seam
   double minAngleDegAfter = 0;
 };
 
-// Removes triangles whose longest edge exceeds `needleRatio` times the shortest (collapsing that
+// First collapses seam edges (between two labels) shorter than maxCollapseMm along the seam, where
+// no triangle turns over. Then removes triangles whose longest edge exceeds `needleRatio` times the shortest (collapsing that
 // edge when it is shorter than maxCollapseMm) or whose largest angle exceeds `capAngleDeg`
 // (flipping its longest edge). Labels follow the surviving triangles; uv corners are re-read from
 // the input triangle each corner vertex came from. Throws std::runtime_error when the result is not
