@@ -1,3 +1,4 @@
+#include "mesh/Barycentric.hpp"
 #include "mesh/SurfaceRemesh.hpp"
 
 #include <CGAL/AABB_segment_primitive.h>
@@ -339,14 +340,6 @@ std::vector<double> curvatureEdgeLimit(const Remesh& r, int numLabels, double sh
   return h;
 }
 
-// Barycentric coordinates of p (projected onto the triangle's plane) in triangle abc.
-Eigen::Vector3d barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                            const Eigen::Vector3d& c) {
-  const Eigen::Vector3d n = (b - a).cross(c - a);
-  const double n2 = n.squaredNorm();
-  const double la = (c - b).cross(p - b).dot(n) / n2, lb = (a - c).cross(p - c).dot(n) / n2;
-  return {la, lb, 1 - la - lb};
-}
 
 double minAngleDeg(const SurfaceMesh& s) {
   double best = 180;

@@ -1,3 +1,4 @@
+#include "mesh/Barycentric.hpp"
 #include "mesh/TissueBoolean.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -80,14 +81,6 @@ Mesh toCgal(const SurfaceMesh& s, int firstOrigin, const std::string& name) {
   return m;
 }
 
-// Barycentric coordinates of p in triangle abc (p on its plane, up to rounding).
-Eigen::Vector3d barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                            const Eigen::Vector3d& c) {
-  const Eigen::Vector3d n = (b - a).cross(c - a);
-  const double n2 = n.squaredNorm();
-  const double la = (c - b).cross(p - b).dot(n) / n2, lb = (a - c).cross(p - c).dot(n) / n2;
-  return {la, lb, 1 - la - lb};
-}
 
 }  // namespace
 
