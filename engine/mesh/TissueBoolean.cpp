@@ -82,6 +82,45 @@ Mesh toCgal(const SurfaceMesh& s, int firstOrigin, const std::string& name) {
 }
 
 
+// CGAL's corefinement orders its output by internal maps whose order can change from one call to
+// the next within a process (the same surface, listed differently); simplification depends on the
+// order. Lists vertices by position and triangles by their vertices (each rotated to start at its
+// smallest, orientation kept), so the same inputs always give the same arrays.
+void canonicalOrder(LabelledSurface& out) {
+  SurfaceMesh& s = out.surface;
+  const int nv = s.numVertices(), nt = s.numTriangles();
+  std::vector<int> byPos(nv);
+  for (int i = 0; i < nv; ++i) byPos[i] = i;
+  const Positions less;
+  std::sort(byPos.begin(), byPos.end(), [&](int a, int b) { return less(s.vertices.col(a), s.vertices.col(b)); });
+  std::vector<int> newIndex(nv);
+  Eigen::Matrix3Xd V(3, nv);
+  for (int k = 0; k < nv; ++k) newIndex[byPos[k]] = k, V.col(k) = s.vertices.col(byPos[k]);
+  std::vector<std::array<int, 4>> tris(nt);  // rotated corners, then the old triangle index
+  std::vector<int> rotation(nt);
+  for (int t = 0; t < nt; ++t) {
+    std::array<int, 3> c{newIndex[s.triangles(0, t)], newIndex[s.triangles(1, t)], newIndex[s.triangles(2, t)]};
+    const int r = static_cast<int>(std::min_element(c.begin(), c.end()) - c.begin());
+    rotation[t] = r;
+    tris[t] = {c[r], c[(r + 1) % 3], c[(r + 2) % 3], t};
+  }
+  std::sort(tris.begin(), tris.end());
+  Eigen::Matrix3Xi F(3, nt);
+  std::vector<int> label(nt);
+  Eigen::Matrix2Xd uv(2, out.cornerUv.cols());
+  for (int k = 0; k < nt; ++k) {
+    const int t = tris[k][3];
+    F.col(k) << tris[k][0], tris[k][1], tris[k][2];
+    label[k] = out.label[t];
+    if (out.hasUv())
+      for (int c = 0; c < 3; ++c) uv.col(3 * k + c) = out.cornerUv.col(3 * t + (rotation[t] + c) % 3);
+  }
+  s.vertices = std::move(V);
+  s.triangles = std::move(F);
+  out.label = std::move(label);
+  if (out.hasUv()) out.cornerUv = std::move(uv);
+}
+
 }  // namespace
 
 std::string tissueInputName(int k, const std::vector<std::string>& names) {
@@ -170,6 +209,7 @@ LabelledSurface subtractSurfaces(const SurfaceMesh& envelope, const std::vector<
     if (facesPerSolid[k] == 0)
       out.warnings.push_back(tissueInputName(k, names) +
                              ": touches no tissue (outside the envelope or inside another solid); ignored");
+  canonicalOrder(out);
   return out;
 }
 

@@ -3,7 +3,9 @@
 // the envelope's uv reaches the new vertices by interpolation; bad inputs are named.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -49,6 +51,25 @@ TEST(TissueBoolean, InnerBoneLeavesACavityOfExactlyItsVolume) {
               1e-9 * scene.skin.signedVolume());
   EXPECT_EQ(s.surface.numTriangles(), scene.skin.numTriangles() + scene.solids[0].numTriangles());
   EXPECT_TRUE(s.warnings.empty());
+}
+
+// CGAL lists the corefinement's output in an order that can change between calls; everything
+// downstream (simplification, TetGen) depends on the order, so the result is put in one.
+TEST(TissueBoolean, TheSameInputsGiveTheSameArraysInCanonicalOrder) {
+  const test::TissueScene scene = tissueScene();
+  const LabelledSurface a = subtractSurfaces(scene.skin, scene.solids, scene.names);
+  const LabelledSurface b = subtractSurfaces(scene.skin, scene.solids, scene.names);
+  EXPECT_EQ(a.surface.vertices, b.surface.vertices);
+  EXPECT_EQ(a.surface.triangles, b.surface.triangles);
+  EXPECT_EQ(a.label, b.label);
+  ASSERT_EQ(a.cornerUv.size(), b.cornerUv.size());  // bit for bit: solid corners carry NaN uv
+  EXPECT_EQ(std::memcmp(a.cornerUv.data(), b.cornerUv.data(), sizeof(double) * a.cornerUv.size()), 0);
+  for (int i = 1; i < a.surface.numVertices(); ++i) {
+    const Eigen::Vector3d p = a.surface.vertices.col(i - 1), q = a.surface.vertices.col(i);
+    ASSERT_TRUE(std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3)) << "vertex " << i;
+  }
+  for (int t = 0; t < a.surface.numTriangles(); ++t)
+    ASSERT_EQ(a.surface.triangles.col(t).minCoeff(), a.surface.triangles(0, t)) << "triangle " << t;
 }
 
 TEST(TissueBoolean, LabelsNameTheSurfaceEveryTriangleLiesOn) {
