@@ -148,7 +148,7 @@ void flipFlatTriangles(const Eigen::Matrix3Xd& V, std::vector<Eigen::Vector3i>& 
   }
 }
 
-void simplifyPatch(const LabelledSurface& in, Patch& p) {
+void simplifyPatch(const LabelledSurface& in, Patch& p, double maxErrorMm) {
   const Eigen::Matrix3Xi& F = in.surface.triangles;
   const int n = static_cast<int>(p.triangles.size());
   p.result.clear();
@@ -172,11 +172,14 @@ void simplifyPatch(const LabelledSurface& in, Patch& p) {
     for (int d = 0; d < 3; ++d) xyz[3 * i + d] = static_cast<float>(in.surface.vertices(d, global[i]));
   std::vector<unsigned> out(indices.size());
   float error = 0;
-  // target_error 1 (the patch's whole extent): the triangle count decides, not the error.
+  // The triangle count decides, up to an absolute error: a small patch on a sharp feature (the
+  // nose tip in its refine region) would otherwise collapse flat to reach its count.
+  const float scale = meshopt_simplifyScale(xyz.data(), global.size(), 3 * sizeof(float));
+  const float targetError = scale > 0 ? std::min(1.0f, static_cast<float>(maxErrorMm) / scale) : 1.0f;
   const size_t count = meshopt_simplify(out.data(), indices.data(), indices.size(), xyz.data(), global.size(),
-                                        3 * sizeof(float), 3 * static_cast<size_t>(std::max(p.target, 1)), 1.0f,
+                                        3 * sizeof(float), 3 * static_cast<size_t>(std::max(p.target, 1)), targetError,
                                         meshopt_SimplifyLockBorder, &error);
-  p.errorMm = error * meshopt_simplifyScale(xyz.data(), global.size(), 3 * sizeof(float));
+  p.errorMm = error * scale;
   for (size_t k = 0; k < count; k += 3)
     p.result.emplace_back(global[out[k]], global[out[k + 1]], global[out[k + 2]]);
   if (p.result.empty())  // collapsed a whole closed patch: keep it as it is
@@ -208,6 +211,8 @@ LabelledSurface simplifySurface(const LabelledSurface& in, const SimplifyOptions
   if (V.cols() >= (1 << 21))
     throw std::invalid_argument("simplifySurface: more than 2^21 vertices (" + std::to_string(V.cols()) + ")");
   if (options.maxRounds < 1) throw std::invalid_argument("simplifySurface: maxRounds must be at least 1");
+  if (!(options.maxErrorMm > 0 && std::isfinite(options.maxErrorMm)))
+    throw std::invalid_argument("simplifySurface: maxErrorMm must be a positive number of mm");
   for (size_t r = 0; r < options.refine.size(); ++r)
     if (!(options.refine[r].radius > 0) || !(options.refine[r].density > 0) || !options.refine[r].center.allFinite())
       throw std::invalid_argument("simplifySurface: refine region " + std::to_string(r) +
@@ -293,7 +298,7 @@ LabelledSurface simplifySurface(const LabelledSurface& in, const SimplifyOptions
     for (Patch& p : patches) {
       // A closed patch (an inner bone shell) must not collapse to nothing: at least 20 triangles.
       p.target = std::max(p.label == 0 ? 1 : 20, static_cast<int>(std::lround(perArea * p.area * p.weight)));
-      simplifyPatch(in, p);
+      simplifyPatch(in, p, options.maxErrorMm);
     }
     // Skin patches stuck above their target (locked borders) take budget from the others, once.
     double stuck = 0, freeTarget = 0;
@@ -308,7 +313,7 @@ LabelledSurface simplifySurface(const LabelledSurface& in, const SimplifyOptions
       for (Patch& p : patches)
         if (p.label == 0 && !p.frozen && p.result.size() <= 1.1 * p.target) {
           p.target = std::max(1, static_cast<int>(std::lround(p.target * scale)));
-          simplifyPatch(in, p);
+          simplifyPatch(in, p, options.maxErrorMm);
         }
 
     // Rejoin and check.

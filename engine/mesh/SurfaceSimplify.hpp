@@ -26,6 +26,10 @@ struct SimplifyOptions {
   std::vector<RefineRegion> refine;
   double interfaceDensity = 1.0;      // solid patches: triangles per area relative to the plain skin
   int maxRounds = 24;                 // of simplify-check-refine, see simplifySurface
+  // No collapse moves the surface farther than this (mm) by meshopt's quadric estimate (the true
+  // distance can reach about twice that): where the count would need more, the patch keeps more
+  // triangles and the other skin patches make up for it.
+  double maxErrorMm = 0.5;
 };
 
 struct SimplifyReport {

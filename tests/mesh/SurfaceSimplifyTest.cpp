@@ -86,6 +86,7 @@ TEST(SurfaceSimplify, KeptVerticesAreInputVerticesOnTheirSurfacesWithTheirUv) {
 TEST(SurfaceSimplify, RefineRegionsGetDenser) {
   SimplifyOptions o;
   o.skinTriangles = 1500;
+  o.maxErrorMm = 1e3;  // the count alone decides, so the densities can be compared
   const RefineRegion lips{Eigen::Vector3d(0, -50, 0), 20, 3.0};
   o.refine = {lips};
   const LabelledSurface s = simplifySurface(full(), o);
@@ -103,6 +104,41 @@ TEST(SurfaceSimplify, RefineRegionsGetDenser) {
   ASSERT_GT(in, 0);
   EXPECT_GE((in / areaIn) / (out / areaOut), 2.0) << in << " in, " << out << " out";
   EXPECT_NEAR(countLabel(s, 0), 1500, 150);
+}
+
+// The error bound: where the count would flatten the surface further, a patch keeps more
+// triangles. A sphere with a nose (a 15 mm bump) and a refine region around its tip is the
+// phantom's case: the tip becomes a patch of its own whose share of the count is so small that,
+// without the bound, meshopt flattens it by millimetres.
+TEST(SurfaceSimplify, NoCollapseMovesTheSurfaceFartherThanTheErrorBound) {
+  LabelledSurface nose;
+  nose.surface = makeIcosphere(50, 5);
+  nose.surface.uv.resize(2, 0);
+  for (int i = 0; i < nose.surface.numVertices(); ++i) {
+    const Eigen::Vector3d d = nose.surface.vertices.col(i).normalized();
+    const double angle = std::acos(std::clamp(-d.y(), -1.0, 1.0));
+    nose.surface.vertices.col(i) = (50 + 15 * std::exp(-std::pow(angle / 0.25, 2))) * d;
+  }
+  nose.label.assign(nose.surface.numTriangles(), 0);
+  const auto deviation = [&](const LabelledSurface& s) {
+    return distancesToSurface(s.surface.vertices, s.surface.triangles, nose.surface.vertices).maxCoeff();
+  };
+  SimplifyOptions o;
+  o.skinTriangles = 400;
+  o.refine = {{Eigen::Vector3d(0, -65, 0), 6, 1.0}};
+  o.maxErrorMm = 1e3;
+  const double unbounded = deviation(simplifySurface(nose, o));
+  o.maxErrorMm = 0.3;
+  SimplifyReport report;
+  const double bounded = deviation(simplifySurface(nose, o, &report));
+  std::cout << "largest deviation: " << unbounded << " mm unbounded, " << bounded << " mm with a 0.3 mm bound ("
+            << report.skinTriangles << " triangles)\n";
+  EXPECT_GT(unbounded, 1.5);
+  EXPECT_GT(unbounded, 2.5 * bounded);
+  EXPECT_LT(bounded, 0.75);  // meshopt's error is a quadric estimate: the distance may exceed it
+  EXPECT_LE(report.maxErrorMm, 0.3 + 1e-6);
+  o.maxErrorMm = 0;
+  EXPECT_THROW(simplifySurface(nose, o), std::invalid_argument);
 }
 
 // Boxes are the hard case for meshopt (reflex seam corners, long straight seams): the result must
