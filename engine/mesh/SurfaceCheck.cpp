@@ -106,7 +106,8 @@ std::vector<Edge> edgesOf(const Work& w) {
 
 // First example of each defect, for the messages.
 struct Examples {
-  Eigen::Vector3d boundary, nonManifoldEdge, nonManifoldVertex, inconsistent, zeroArea, degenerate, duplicate;
+  Eigen::Vector3d boundary = Eigen::Vector3d::Zero(), nonManifoldEdge = boundary, nonManifoldVertex = boundary,
+                  inconsistent = boundary, zeroArea = boundary, degenerate = boundary, duplicate = boundary;
 };
 
 // Counts everything that needs no repair decision, on the triangles as they are.

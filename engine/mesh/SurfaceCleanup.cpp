@@ -1,10 +1,13 @@
 #include "mesh/SurfaceCleanup.hpp"
 
+#include "mesh/SelfIntersection.hpp"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -38,7 +41,7 @@ int countSlivers(const Eigen::Matrix3Xd& V, const Eigen::Matrix3Xi& F, double* m
 // than minEdge along the seam: the removed vertex is a plain seam vertex (two seam edges), it goes
 // to its neighbour on the seam, and only when no incident triangle turns over or degenerates.
 int coarsenSeams(Mesh& mesh, const Mesh::Property_map<Mesh::Face_index, int>& label,
-                 Mesh::Property_map<Mesh::Vertex_index, int>& source, double minEdge) {
+                 Mesh::Property_map<Mesh::Vertex_index, int>& source, const std::vector<char>& frozen, double minEdge) {
   const auto isSeam = [&](Mesh::Halfedge_index h) {
     return label[mesh.face(h)] != label[mesh.face(mesh.opposite(h))];
   };
@@ -60,7 +63,7 @@ int coarsenSeams(Mesh& mesh, const Mesh::Property_map<Mesh::Face_index, int>& la
       if (!isSeam(h)) continue;
       for (int side = 0; side < 2; ++side, h = mesh.opposite(h)) {
         const auto gone = mesh.source(h), kept = mesh.target(h);
-        if ((vec(gone) - vec(kept)).norm() >= minEdge || seamDegree(gone) != 2) continue;
+        if (frozen[source[gone]] || (vec(gone) - vec(kept)).norm() >= minEdge || seamDegree(gone) != 2) continue;
         if (!CGAL::Euler::does_satisfy_link_condition(e, mesh)) continue;
         // Triangles around `gone`, other than the two on the edge, with `gone` moved onto `kept`.
         bool ok = true;
@@ -87,10 +90,10 @@ int coarsenSeams(Mesh& mesh, const Mesh::Property_map<Mesh::Face_index, int>& la
   return collapsed;
 }
 
-}  // namespace
-
-LabelledSurface removeSlivers(const LabelledSurface& in, double maxCollapseMm, double needleRatio, double capAngleDeg,
-                              CleanupReport* report) {
+// One clean-up pass; input vertices flagged in `frozen` are neither removed nor moved, and no edge
+// at them is flipped.
+LabelledSurface cleanOnce(const LabelledSurface& in, const std::vector<char>& frozen, double maxCollapseMm,
+                          double needleRatio, double capAngleDeg, CleanupReport& r) {
   Mesh mesh;
   std::vector<Mesh::Vertex_index> vi;
   for (int i = 0; i < in.surface.numVertices(); ++i) {
@@ -110,14 +113,27 @@ LabelledSurface removeSlivers(const LabelledSurface& in, double maxCollapseMm, d
     if (in.hasUv() && in.label[t] == 0)
       for (int c = 0; c < 3; ++c) vertexUv[in.surface.triangles(c, t)] = in.cornerUv.col(3 * t + c);
   }
-  CleanupReport r;
   r.trianglesBefore = in.surface.numTriangles();
   r.needlesAndCapsBefore = countSlivers(in.surface.vertices, in.surface.triangles);
 
-  r.seamEdgesCollapsed = coarsenSeams(mesh, label, source, maxCollapseMm);
+  r.seamEdgesCollapsed = coarsenSeams(mesh, label, source, frozen, maxCollapseMm);
   const double capCos = std::cos(capAngleDeg * 3.14159265358979323846 / 180.0);
-  for (int round = 0; round < 10; ++round)
-    if (PMP::experimental::remove_almost_degenerate_faces(mesh, capCos, needleRatio, maxCollapseMm)) break;
+  // Seams stay where they are: a flip or a collapse across a seam would hand a triangle (and its
+  // nodes) to another label, bonding tissue nodes that lie millimetres off their bone.
+  auto seam = mesh.add_property_map<Mesh::Edge_index, bool>("e:seam", false).first;
+  auto fixedVertex = mesh.add_property_map<Mesh::Vertex_index, bool>("v:frozen", false).first;
+  for (auto v : mesh.vertices()) fixedVertex[v] = frozen[source[v]] != 0;
+  for (int round = 0; round < 10; ++round) {
+    for (auto e : mesh.edges()) {
+      const auto h = mesh.halfedge(e);
+      seam[e] = label[mesh.face(h)] != label[mesh.face(mesh.opposite(h))] || fixedVertex[mesh.source(h)] ||
+                fixedVertex[mesh.target(h)];
+    }
+    if (PMP::experimental::remove_almost_degenerate_faces(
+            faces(mesh), mesh, capCos, needleRatio, maxCollapseMm,
+            CGAL::parameters::edge_is_constrained_map(seam).vertex_is_constrained_map(fixedVertex)))
+      break;
+  }
   mesh.collect_garbage();
 
   LabelledSurface out;
@@ -149,6 +165,39 @@ LabelledSurface removeSlivers(const LabelledSurface& in, double maxCollapseMm, d
   r.trianglesAfter = out.surface.numTriangles();
   r.needlesAndCapsAfter = countSlivers(out.surface.vertices, out.surface.triangles, &r.minAngleDegAfter);
   if (!CGAL::is_closed(mesh)) throw std::runtime_error("removeSlivers: the cleaned boundary is not closed");
+  return out;
+}
+
+}  // namespace
+
+LabelledSurface removeSlivers(const LabelledSurface& in, double maxCollapseMm, double needleRatio, double capAngleDeg,
+                              CleanupReport* report) {
+  // Collapses can fold the surface onto itself where two sheets come close (a thin layer of
+  // tissue between air and bone). Such places are found (CGAL, exact) and the clean-up is run
+  // again from the input with the input vertices near them left alone: a local problem costs
+  // local clean-up only.
+  std::vector<char> frozen(in.surface.numVertices(), 0);
+  CleanupReport r;
+  LabelledSurface out;
+  for (int round = 0;; ++round) {
+    r = CleanupReport{};
+    out = cleanOnce(in, frozen, maxCollapseMm, needleRatio, capAngleDeg, r);
+    const auto crossing = selfIntersections(out.surface.vertices, out.surface.triangles);
+    r.rounds = round + 1;
+    if (crossing.empty()) break;
+    if (round == 4) throw std::runtime_error("removeSlivers: the cleaned boundary still intersects itself after " +
+                                             std::to_string(r.rounds) + " rounds");
+    // Freeze the input vertices within a few collapse lengths of every crossing triangle.
+    const double radius = 3.0 * maxCollapseMm;
+    for (const auto& [a, b] : crossing)
+      for (int t : {a, b})
+        for (int c = 0; c < 3; ++c) {
+          const Eigen::Vector3d x = out.surface.vertices.col(out.surface.triangles(c, t));
+          for (int i = 0; i < in.surface.numVertices(); ++i)
+            if ((in.surface.vertices.col(i) - x).squaredNorm() < radius * radius) frozen[i] = 1;
+        }
+  }
+  r.frozenVertices = static_cast<int>(std::count(frozen.begin(), frozen.end(), 1));
   if (report) *report = r;
   return out;
 }
