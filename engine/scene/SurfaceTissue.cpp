@@ -105,50 +105,59 @@ SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
 
   t0 = Clock::now();
   std::ostringstream how;
-  LabelledSurface boundary;
-  {
-    SimplifyOptions simplify;
-    simplify.skinTriangles = in.skinTriangles;
-    simplify.refine = in.refine;
-    simplify.interfaceDensity = in.interfaceDensity;
-    SimplifyReport simplified;
-    const LabelledSurface simple = simplifySurface(full, simplify, &simplified);
-    how << "simplified to " << simplified.skinTriangles << " skin + " << simplified.solidTriangles << " interface triangles";
-    boundary = simple;
-    // Needle and cap removal, boldest first; a bolder clean-up can fold the surface onto itself,
-    // which TetGen refuses, so each result is tried and the next, milder one used on failure.
-    struct Cleanup { double collapseMm, needleRatio, capDeg; };
-    for (const Cleanup c : {Cleanup{2.0 * in.maxCollapseMm, 3.0, 140.0}, Cleanup{in.maxCollapseMm, 6.0, 165.0}}) {
-      CleanupReport cleaned;
-      LabelledSurface candidate = removeSlivers(simple, c.collapseMm, c.needleRatio, c.capDeg, &cleaned);
-      try {
-        TetgenOptions probe;
-        probe.maxRadiusEdgeRatio = 0;  // a plain constrained tetrahedralisation finds self-intersections fast
-        tetrahedralize(candidate.surface.vertices, candidate.surface.triangles, probe);
-      } catch (const std::exception&) {
-        continue;
-      }
-      boundary = std::move(candidate);
-      how << ", needles and caps " << cleaned.needlesAndCapsBefore << " -> " << cleaned.needlesAndCapsAfter
-          << " (edges collapsed up to " << c.collapseMm << " mm)";
-      break;
-    }
-    int skin = 0;
-    for (int l : boundary.label) skin += l == 0;
-    out.skinTriangles = skin;
-    how << "; " << boundary.surface.numTriangles() << " boundary triangles, " << skin << " skin";
-  }
-  const double boundarySeconds = since(t0);
-  for (const auto& w : boundary.warnings) out.report.push_back("warning: " + w);
+  SimplifyOptions simplify;
+  simplify.skinTriangles = in.skinTriangles;
+  simplify.refine = in.refine;
+  simplify.interfaceDensity = in.interfaceDensity;
+  SimplifyReport simplified;
+  const LabelledSurface simple = simplifySurface(full, simplify, &simplified);
+  how << "simplified to " << simplified.skinTriangles << " skin + " << simplified.solidTriangles << " interface triangles";
+  double boundarySeconds = since(t0), tetgenSeconds = 0;
 
-  t0 = Clock::now();
+  // Needle and cap removal, boldest first. A bolder clean-up can fold the surface onto itself
+  // (TetGen refuses it) or leave faces so nearly coplanar that TetGen, bound to keep them (-Y),
+  // fills them with a flat tetrahedron: each result is meshed and checked, the next, milder one
+  // used on failure.
   TetgenOptions tetgen;
   tetgen.maxRadiusEdgeRatio = in.maxRadiusEdgeRatio;
   tetgen.minDihedralDeg = in.minDihedralDeg;
   tetgen.preserveSurface = in.preserveSurface;
-  tetgen.holes = cavityPoints(boundary.surface.vertices, boundary.surface.triangles);
-  out.mesh = tetrahedralize(boundary.surface.vertices, boundary.surface.triangles, tetgen);
-  const double tetgenSeconds = since(t0);
+  struct Cleanup { double collapseMm, needleRatio, capDeg; };
+  // The last resort is the simplified surface as it is (collapse length 0: no clean-up).
+  const Cleanup cleanups[] = {{2.0 * in.maxCollapseMm, 3.0, 140.0}, {in.maxCollapseMm, 6.0, 165.0}, {0, 0, 0}};
+  LabelledSurface boundary;
+  std::string lastError;
+  bool meshed = false;
+  for (const Cleanup& c : cleanups) {
+    t0 = Clock::now();
+    CleanupReport cleaned;
+    LabelledSurface candidate = c.collapseMm > 0 ? removeSlivers(simple, c.collapseMm, c.needleRatio, c.capDeg, &cleaned) : simple;
+    boundarySeconds += since(t0);
+    t0 = Clock::now();
+    try {
+      tetgen.holes = cavityPoints(candidate.surface.vertices, candidate.surface.triangles);
+      out.mesh = tetrahedralize(candidate.surface.vertices, candidate.surface.triangles, tetgen);
+      validateMesh(out.mesh, "tetrahedralize");
+      meshed = true;
+    } catch (const std::exception& e) {
+      lastError = e.what();
+    }
+    tetgenSeconds += since(t0);
+    if (!meshed) continue;
+    boundary = std::move(candidate);
+    if (c.collapseMm > 0)
+      how << ", needles and caps " << cleaned.needlesAndCapsBefore << " -> " << cleaned.needlesAndCapsAfter
+          << " (edges collapsed up to " << c.collapseMm << " mm)";
+    else
+      how << ", no needle and cap removal (every clean-up failed: " << lastError << ")";
+    break;
+  }
+  if (!meshed) throw std::runtime_error(lastError);
+  int skin = 0;
+  for (int l : boundary.label) skin += l == 0;
+  out.skinTriangles = skin;
+  how << "; " << boundary.surface.numTriangles() << " boundary triangles, " << skin << " skin";
+  for (const auto& w : boundary.warnings) out.report.push_back("warning: " + w);
 
   const std::vector<std::vector<int>> byLabel = labelNodes(boundary, out.mesh, static_cast<int>(in.solids.size()) + 1);
   out.skinNodes = byLabel[0];

@@ -14,7 +14,7 @@
 namespace orthosim {
 
 // Part of the tissue cache key: bump when the meshing changes what it produces.
-constexpr const char* kSurfaceTissueVersion = "surface-tissue-2";
+constexpr const char* kSurfaceTissueVersion = "surface-tissue-3";
 
 struct SurfaceTissueInput {
   SurfaceMesh envelope;               // closed skin envelope (uv optional)
