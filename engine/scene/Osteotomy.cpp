@@ -28,14 +28,17 @@ CutPlane plane(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
 
 // Lateral limits of the maxilla: 12 mm outside the first molars (the zygomatic buttress), so tissue
 // bonded to the skull further out (zygoma, cheeks over the mandible) never joins the maxilla.
-std::vector<CutPlane> maxillaSides(const LandmarkTable& lm, const AnatomicalFrame& f) {
-  return {plane(lm("upper_molar_left") - 12.0 * f.right, f.right), plane(lm("upper_molar_right") + 12.0 * f.right, -f.right)};
+// Lateral limits of a maxillary fragment, `outside` mm lateral of the upper molars.
+std::vector<CutPlane> maxillaSides(const LandmarkTable& lm, const AnatomicalFrame& f, double outside) {
+  return {plane(lm("upper_molar_left") - outside * f.right, f.right), plane(lm("upper_molar_right") + outside * f.right, -f.right)};
 }
 
 std::vector<CutPlane> leFortOneBounds(const OsteotomySpec& cut, const LandmarkTable& lm, const AnatomicalFrame& f) {
   std::vector<CutPlane> b{plane(lm("upper_incisor_apex") + offsetOr(cut, 4.0) * f.superior, -f.superior),
                           plane(lm("PNS") - 5.0 * f.anterior, f.anterior)};
-  for (const CutPlane& p : maxillaSides(lm, f)) b.push_back(p);
+  // The Le Fort I line runs below the zygoma, so its lateral limits only keep the fragment finite:
+  // far enough out (20 mm) that the tissue on the buccal alveolar bone is bonded, not blended.
+  for (const CutPlane& p : maxillaSides(lm, f, 20.0)) b.push_back(p);
   return b;
 }
 
@@ -103,7 +106,8 @@ std::vector<FragmentRegion> osteotomyRegions(const OsteotomySpec& cut, const Lan
     out.push_back({"maxilla", cut.bone,
                    {plane(apex, -f.superior + slope * f.right), plane(apex, -f.superior - slope * f.right),
                     plane(lm("PNS") - 5.0 * f.anterior, f.anterior)}});
-    for (const CutPlane& p : maxillaSides(lm, f)) out.back().bounds.push_back(p);
+    // Le Fort II separates the maxilla from the zygomas: 12 mm outside the molars.
+    for (const CutPlane& p : maxillaSides(lm, f, 12.0)) out.back().bounds.push_back(p);
   } else if (cut.kind == "segmented_maxilla") {
     out = segmentedMaxilla(cut, lm, f);
   } else if (cut.kind == "bsso") {

@@ -37,8 +37,8 @@ TEST(Osteotomy, LeFortOneTakesTheToothBearingMaxillaBelowTheApicesAndInFrontOfTh
   EXPECT_FALSE(regions[0].contains({-35, 0, 9.1}));  // just above it
   EXPECT_FALSE(regions[0].contains({-40, 0, 60}));   // nasion
   EXPECT_FALSE(regions[0].contains({20, 0, -10}));   // behind the pterygomaxillary junction
-  EXPECT_TRUE(regions[0].contains({-5, -36, -12}));  // buttress, 11 mm outside the left molar
-  EXPECT_FALSE(regions[0].contains({-5, -38, -12})); // zygoma, 13 mm outside
+  EXPECT_TRUE(regions[0].contains({-5, -44, -12}));  // 19 mm outside the left molar: lateral wall
+  EXPECT_FALSE(regions[0].contains({-5, -46, -12})); // 21 mm outside: beyond the fragment's limit
   cut.offset = 10;
   EXPECT_TRUE(osteotomyRegions(cut, skullLandmarks())[0].contains({-35, 0, 14}));
 }
