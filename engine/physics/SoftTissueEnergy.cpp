@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace orthosim {
 namespace {
@@ -25,6 +27,14 @@ SoftTissueEnergy::SoftTissueEnergy(const TetMesh& mesh, const NeoHookean& materi
     restInverse_[e] = Dm.inverse();
     volume_[e] = Dm.determinant() / 6.0;
   }
+  active_.resize(mesh.numTets());
+  for (int e = 0; e < mesh.numTets(); ++e) active_[e] = e;
+}
+
+void SoftTissueEnergy::restrictTo(std::vector<int> elements) {
+  for (int e : elements)
+    if (e < 0 || e >= numTets()) throw std::out_of_range("SoftTissueEnergy::restrictTo: element " + std::to_string(e));
+  active_ = std::move(elements);
 }
 
 Eigen::Matrix3d SoftTissueEnergy::deformationGradient(int e, const Eigen::Matrix3Xd& x) const {
@@ -37,17 +47,17 @@ double SoftTissueEnergy::elementEnergy(int e, const Eigen::Matrix3Xd& x) const {
 
 double SoftTissueEnergy::energy(const Eigen::Matrix3Xd& x) const {
   double sum = 0.0;
-  const int m = numTets();
+  const int m = static_cast<int>(active_.size());
 #pragma omp parallel for reduction(+ : sum) schedule(static)
-  for (int e = 0; e < m; ++e) sum += elementEnergy(e, x);
+  for (int k = 0; k < m; ++k) sum += elementEnergy(active_[k], x);
   return sum;  // an inverted element contributes +inf
 }
 
 double SoftTissueEnergy::minDetF(const Eigen::Matrix3Xd& x) const {
   double minDet = std::numeric_limits<double>::infinity();
-  const int m = numTets();
+  const int m = static_cast<int>(active_.size());
 #pragma omp parallel for reduction(min : minDet) schedule(static)
-  for (int e = 0; e < m; ++e) minDet = std::min(minDet, deformationGradient(e, x).determinant());
+  for (int k = 0; k < m; ++k) minDet = std::min(minDet, deformationGradient(active_[k], x).determinant());
   return minDet;
 }
 
@@ -62,7 +72,7 @@ Vector12d SoftTissueEnergy::elementGradient(int e, const Eigen::Matrix3Xd& x) co
 
 Eigen::Matrix3Xd SoftTissueEnergy::gradient(const Eigen::Matrix3Xd& x) const {
   Eigen::Matrix3Xd g = Eigen::Matrix3Xd::Zero(3, x.cols());
-  for (int e = 0; e < numTets(); ++e) {
+  for (int e : active_) {
     const Vector12d ge = elementGradient(e, x);
     for (int a = 0; a < 4; ++a) g.col(mesh_.tets(a, e)) += ge.segment<3>(3 * a);
   }

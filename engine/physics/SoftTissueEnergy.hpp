@@ -21,6 +21,12 @@ class SoftTissueEnergy {
   const NeoHookean& material() const { return material_; }
   int numTets() const { return mesh_.numTets(); }
 
+  // The elements energy(), gradient() and minDetF() sum over: all by default. A solver leaves out
+  // elements whose four nodes all move with bone: nothing it does can change them, and a sliver
+  // among them can be turned over by the prescribed motion alone.
+  void restrictTo(std::vector<int> elements);
+  const std::vector<int>& activeElements() const { return active_; }
+
   Eigen::Matrix3d deformationGradient(int e, const Eigen::Matrix3Xd& x) const;
   // Sum over elements; +infinity as soon as any element is inverted.
   double energy(const Eigen::Matrix3Xd& x) const;
@@ -37,6 +43,7 @@ class SoftTissueEnergy {
   NeoHookean material_;
   std::vector<Eigen::Matrix3d, Eigen::aligned_allocator<Eigen::Matrix3d>> restInverse_;  // Dm^-1
   std::vector<double> volume_;
+  std::vector<int> active_;
 };
 
 }  // namespace orthosim

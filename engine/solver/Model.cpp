@@ -19,6 +19,7 @@ Model::Model(Scene scene) : scene_(std::move(scene)) {
   energy_ = std::make_unique<SoftTissueEnergy>(scene_.mesh, material);
   coupling_ = std::make_unique<Coupling>(scene_);
   if (coupling_->numReducedDofs() == 0) throw std::invalid_argument("the scene has no free degrees of freedom");
+  energy_->restrictTo(elementsWithFreedom());
   system_ = std::make_unique<ReducedSystem>(*energy_, *coupling_);
   factor_.analyze(system_->matrix());
   // The rest Hessian is positive definite exactly when every part of the tissue is held: check it
@@ -31,6 +32,22 @@ Model::Model(Scene scene) : scene_(std::move(scene)) {
                                 "check that every connected piece of tissue has fixed or bonded nodes");
   lengthScale_ = scene_.mesh.meanEdgeLength();
   buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Elements with at least one node that has a free DoF or follows a free fragment.
+std::vector<int> Model::elementsWithFreedom() const {
+  std::vector<int> out;
+  const TetMesh& mesh = scene_.mesh;
+  for (int e = 0; e < mesh.numTets(); ++e)
+    for (int a = 0; a < 4; ++a) {
+      const int n = mesh.tets(a, e);
+      if (coupling_->dof(n, 0) >= 0 || coupling_->dof(n, 1) >= 0 || coupling_->dof(n, 2) >= 0 ||
+          coupling_->dependsOnFreeFragment(n)) {
+        out.push_back(e);
+        break;
+      }
+    }
+  return out;
 }
 
 bool Model::isRestState(const SimState& s) const {

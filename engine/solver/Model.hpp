@@ -28,7 +28,9 @@ class Model {
   Model& operator=(const Model&) = delete;
 
   const Scene& scene() const { return scene_; }
+  // Restricted to the elements the solve can change (SoftTissueEnergy::restrictTo).
   const SoftTissueEnergy& energy() const { return *energy_; }
+  int numPrescribedElements() const { return scene_.mesh.numTets() - static_cast<int>(energy_->activeElements().size()); }
   const Coupling& coupling() const { return *coupling_; }
   ReducedSystem& system() { return *system_; }
   const ReducedSystem& system() const { return *system_; }
@@ -50,6 +52,8 @@ class Model {
   PlanTargets targetsFromPlan(const std::map<std::string, FragmentMotion>& plan, const SimState& start) const;
 
  private:
+  std::vector<int> elementsWithFreedom() const;
+
   Scene scene_;
   std::unique_ptr<SoftTissueEnergy> energy_;
   std::unique_ptr<Coupling> coupling_;

@@ -37,6 +37,10 @@ ReducedSystem::ReducedSystem(const SoftTissueEnergy& energy, const Coupling& cou
     bool general = false;
     for (int a = 0; a < 4; ++a) general = general || coupling.dependsOnFreeFragment(mesh.tets(a, e));
     if (!general) {
+      bool free = false;
+      for (int a = 0; a < 4; ++a)
+        for (int c = 0; c < 3; ++c) free = free || coupling.dof(mesh.tets(a, e), c) >= 0;
+      if (!free) continue;  // moves with bone only: contributes nothing to the reduced system
       simpleElements_.push_back(e);
       for (int r = 0; r < 12; ++r)
         for (int s = 0; s < 12; ++s) {
