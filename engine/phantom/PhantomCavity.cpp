@@ -11,7 +11,9 @@ namespace orthosim::phantom {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kBackX = -40.0, kFrontX = -110.0;  // ends: behind the first molars' distal half, in front of the lips
+// Ends: behind the second molars (so no tissue lies between the upper and lower crowns, which a
+// jaw move would shear), in front of the lips.
+constexpr double kBackX = -24.0, kFrontX = -110.0;
 constexpr double kBackRound = 8.0, kFrontRound = 1.5;
 constexpr double kSlitHalf = 0.75;
 constexpr double kWallToTeeth = 3.5;  // vestibule depth in front of the incisors
@@ -20,7 +22,7 @@ constexpr double kWallRamp = 2.5;     // half length (x) over which the slit ope
 // Half width of the air behind the lips: buccal faces of the crowns plus a few mm of vestibule.
 double fullHalfWidth(double x) {
   static const std::vector<std::pair<double, double>> t = {{-92, 22}, {-84, 23}, {-76, 27}, {-68, 32},
-                                                           {-58, 35}, {-48, 34}, {-40, 30}};
+                                                           {-58, 35}, {-48, 35}, {-40, 35}, {-32, 34}, {-24, 30}};
   if (x <= t.front().first) return t.front().second;
   for (size_t i = 1; i < t.size(); ++i)
     if (x <= t[i].first)

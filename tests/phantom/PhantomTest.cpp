@@ -21,6 +21,8 @@
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "phantom/Phantom.hpp"
+#include "phantom/PhantomDesign.hpp"
+#include "phantom/PhantomSkull.hpp"
 
 namespace orthosim {
 namespace {
@@ -192,6 +194,20 @@ TEST_P(PhantomVariants, OralCavityOpensTheMouthAndHoldsTheCrowns) {
   for (double dz : {-3.0, -6.0, 3.0, 6.0}) {
     const Eigen::Vector3d q = st + Eigen::Vector3d(3, 0, dz);
     EXPECT_TRUE(skin.inside(q) && !cavity.inside(q)) << "lip at dz " << dz;
+  }
+}
+
+// Contract 4: no tissue lies between the arches or around the upper crowns, from the midline to
+// behind the second molars: tissue there would be sheared across the 1.5 mm occlusal gap by any
+// move of one jaw against the other (a 5 mm Le Fort I then inverts elements).
+TEST_P(PhantomVariants, EveryCrownStandsInTheAir) {
+  const Phantom& p = phantomOf(GetParam());
+  const InsideTest cavity(p.oralCavity);
+  const double sEnd = phantom::upperTeeth().back().end;
+  for (double s = -sEnd + 0.5; s <= sEnd - 0.5; s += 1.0) {
+    const Eigen::Vector3d tip = phantom::upperCrownTip(s);
+    for (double dz : {-0.75, 0.0, 3.0})
+      EXPECT_TRUE(cavity.inside(tip + Eigen::Vector3d(0, 0, dz))) << "arch length " << s << " mm, " << dz << " mm above the tip";
   }
 }
 
