@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Sets up a fresh Debian 12 machine, builds orthosim and runs it on the built-in demo case
-# (no data to download). Until the planning server lands (issue 5) this solves the demo scene
-# from the command line and prints where the scene and the results are.
+# (the phantom patient, no data to download). Until the planning server lands (issue 5) this
+# solves the demo case from the command line and prints where the case and the results are.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup-deps.sh
