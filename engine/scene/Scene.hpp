@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/SurfaceMesh.hpp"
 #include "mesh/TetMesh.hpp"
 #include "scene/RigidPose.hpp"
 
@@ -42,6 +43,18 @@ struct FragmentMotion {
   RigidPose pose() const { return RigidPose::fromMotion(translation, rotation, center); }
 };
 
+// Sliding contact (section 2.3.1): tissue `nodes` may not go below `surface` (outward, world
+// coordinates at rest), which moves with fragment `fragment` (empty: fixed in space). Nodes that
+// move with bone are left out; a free fragment cannot carry a contact surface.
+struct ContactSpec {
+  std::string name;
+  std::vector<int> nodes;
+  SurfaceMesh surface;
+  std::string fragment;
+  double stiffness = 0;  // N/mm per node; 0: kDefaultContactFactor x E x mean edge length
+};
+constexpr double kDefaultContactFactor = 10.0;
+
 // Auto: the exact Hessian when it is positive definite (quadratic convergence near the solution),
 // the per-element eigenvalue-projected one when the factorisation finds it is not.
 enum class HessianMode { Auto, Projected, Exact };
@@ -63,6 +76,7 @@ struct Scene {
   std::vector<FragmentSpec> fragments;
   std::vector<BlendedNode> blended;
   std::vector<FixedSpec> fixed;
+  std::vector<ContactSpec> contacts;  // none: no distance query is ever made
   std::map<std::string, FragmentMotion> plan;  // fragment name -> motion; absent: keeps its pose
   SolverSettings solver;
 

@@ -1,6 +1,7 @@
 #include "solver/Model.hpp"
 
 #include <chrono>
+#include <memory>
 #include <stdexcept>
 
 namespace orthosim {
@@ -20,12 +21,13 @@ Model::Model(Scene scene) : scene_(std::move(scene)) {
   coupling_ = std::make_unique<Coupling>(scene_);
   if (coupling_->numReducedDofs() == 0) throw std::invalid_argument("the scene has no free degrees of freedom");
   energy_->restrictTo(elementsWithFreedom());
+  buildContact();
   system_ = std::make_unique<ReducedSystem>(*energy_, *coupling_);
   factor_.analyze(system_->matrix());
   // The rest Hessian is positive definite exactly when every part of the tissue is held: check it
   // now, and keep its factorisation for the first substep of every solve that starts from rest.
   const SimState rest = restState();
-  system_->assemble(rest, energy_->gradient(rest.x), false);
+  assemble(rest, totalGradient(rest), false);
   restFactor_.analyze(system_->matrix());
   if (!restFactor_.factorize(system_->matrix()))
     throw std::invalid_argument("part of the tissue is held by nothing (the stiffness matrix at rest is singular): "
@@ -48,6 +50,67 @@ std::vector<int> Model::elementsWithFreedom() const {
       }
     }
   return out;
+}
+
+void Model::buildContact() {
+  if (scene_.contacts.empty()) return;
+  const double defaultStiffness = kDefaultContactFactor * scene_.youngsModulus * scene_.mesh.meanEdgeLength();
+  std::vector<ContactPair> pairs;
+  for (const ContactSpec& c : scene_.contacts) {
+    const std::string where = "contact '" + c.name + "'";
+    ContactPair pair;
+    if (!c.fragment.empty()) {
+      const auto f = scene_.fragmentIndex(c.fragment);
+      if (!f) throw std::invalid_argument(where + ": unknown fragment '" + c.fragment + "'");
+      if (scene_.fragments[*f].free) throw std::invalid_argument(where + ": fragment '" + c.fragment + "' is free; contact needs a planned or fixed surface");
+      pair.fragment = *f;
+    }
+    if (c.stiffness < 0 || !std::isfinite(c.stiffness)) throw std::invalid_argument(where + ": stiffness must be positive (N/mm), or 0 for the default");
+    pair.stiffness = c.stiffness > 0 ? c.stiffness : defaultStiffness;
+    try {
+      pair.surface = std::make_shared<RigidSurface>(c.surface);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(where + ": " + e.what());
+    }
+    for (int n : c.nodes) {
+      if (n < 0 || n >= scene_.mesh.numNodes()) throw std::invalid_argument(where + ": node " + std::to_string(n) + " is outside the mesh");
+      const bool free = coupling_->dof(n, 0) >= 0 || coupling_->dof(n, 1) >= 0 || coupling_->dof(n, 2) >= 0;
+      if (free && !coupling_->dependsOnFreeFragment(n)) pair.nodes.push_back(n);
+    }
+    if (!pair.nodes.empty()) pairs.push_back(std::move(pair));
+  }
+  if (!pairs.empty()) contact_ = std::make_unique<ContactEnergy>(std::move(pairs));
+}
+
+std::vector<ActiveContact> Model::activeContacts(const SimState& s) const {
+  if (!contact_) return {};
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<ActiveContact> a = contact_->active(s.x, s.fragments);
+  contactSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return a;
+}
+
+double Model::totalEnergy(const SimState& s) const {
+  const double soft = energy_->energy(s.x);
+  if (!contact_ || !std::isfinite(soft)) return soft;
+  return soft + contact_->energy(activeContacts(s));
+}
+
+Eigen::Matrix3Xd Model::totalGradient(const SimState& s) const {
+  Eigen::Matrix3Xd g = energy_->gradient(s.x);
+  if (contact_) contact_->addGradient(activeContacts(s), g);
+  return g;
+}
+
+Eigen::Matrix3Xd Model::contactGradient(const SimState& s) const {
+  Eigen::Matrix3Xd g = Eigen::Matrix3Xd::Zero(3, s.x.cols());
+  if (contact_) contact_->addGradient(activeContacts(s), g);
+  return g;
+}
+
+void Model::assemble(const SimState& s, const Eigen::Matrix3Xd& g, bool projectToPSD) {
+  system_->assemble(s, g, projectToPSD);
+  for (const ActiveContact& c : activeContacts(s)) system_->addNodeBlock(c.node, ContactEnergy::hessianBlock(c));
 }
 
 bool Model::isRestState(const SimState& s) const {

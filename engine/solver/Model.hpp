@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "contact/ContactEnergy.hpp"
 #include "physics/SoftTissueEnergy.hpp"
 #include "scene/Scene.hpp"
 #include "solver/CholmodFactor.hpp"
@@ -42,6 +43,15 @@ class Model {
   double stepTolerance() const;
   double buildSeconds() const { return buildSeconds_; }
 
+  // Soft tissue plus contact (when the scene has contact pairs): what Newton minimises.
+  double totalEnergy(const SimState& s) const;
+  Eigen::Matrix3Xd totalGradient(const SimState& s) const;
+  Eigen::Matrix3Xd contactGradient(const SimState& s) const;  // zero without contact
+  // The reduced Hessian of the total energy at s into system().matrix().
+  void assemble(const SimState& s, const Eigen::Matrix3Xd& g, bool projectToPSD);
+  const ContactEnergy* contact() const { return contact_.get(); }
+  double contactSeconds() const { return contactSeconds_; }
+
   SimState restState() const { return coupling_->restState(); }
   bool isRestState(const SimState& s) const;
   // The factorisation of the reduced Hessian at rest, made when the model is built: every solve
@@ -53,11 +63,15 @@ class Model {
 
  private:
   std::vector<int> elementsWithFreedom() const;
+  void buildContact();
+  std::vector<ActiveContact> activeContacts(const SimState& s) const;
 
   Scene scene_;
   std::unique_ptr<SoftTissueEnergy> energy_;
   std::unique_ptr<Coupling> coupling_;
   std::unique_ptr<ReducedSystem> system_;
+  std::unique_ptr<ContactEnergy> contact_;  // null without contact pairs
+  mutable double contactSeconds_ = 0;
   CholmodFactor factor_;
   CholmodFactor restFactor_;
   double lengthScale_ = 1.0;

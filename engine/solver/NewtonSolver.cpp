@@ -38,7 +38,7 @@ class Newton {
       Eigen::VectorXd r;
       {
         Stopwatch w{t_.assembly};
-        g = model_.energy().gradient(x.x);
+        g = model_.totalGradient(x);
         r = coupling_.reduce(g, x);
       }
       rep.residual = maxNorm(r);
@@ -75,7 +75,7 @@ class Newton {
         std::fprintf(stderr, "  %s %d: residual %.3e step %.3e alpha %.3g\n", chord ? "chord " : "newton", it,
                      rep.residual, lastStep, lastAlpha);
     }
-    rep.energy = model_.energy().energy(x.x);
+    rep.energy = model_.totalEnergy(x);
     rep.minDetF = model_.energy().minDetF(x.x);
     rep.converged = true;
     state = std::move(x);
@@ -108,7 +108,7 @@ class Newton {
   bool factorOnce(const SimState& x, const Eigen::Matrix3Xd& g, bool project) {
     {
       Stopwatch w{t_.assembly};
-      model_.system().assemble(x, g, project);
+      model_.assemble(x, g, project);
     }
     Stopwatch w{t_.factorization};
     ++t_.factorizations;
@@ -125,10 +125,13 @@ class Newton {
     Eigen::VectorXd rhs;
     {
       Stopwatch w{t_.assembly};
-      g = model_.energy().gradient(x.x);
+      g = model_.totalGradient(x);
       rhs = -(coupling_.reduce(g, x) + model_.system().hessianTimes(x, dxc, settings_.hessian == HessianMode::Projected));
+      // A moved contact surface changes the contact forces without moving any node.
+      if (model_.contact()) rhs -= coupling_.reduce(model_.contactGradient(moved) - model_.contactGradient(x), moved);
     }
     if (dxc.isZero(0.0) && maxNorm(rhs) <= model_.forceTolerance()) {  // nothing moves: no prediction
+      x = std::move(moved);  // the poses of node-less fragments (contact surfaces) still change
       step = 0.0;
       return true;
     }
@@ -147,13 +150,13 @@ class Newton {
     for (double alpha = 1.0; alpha > 1e-3; alpha *= 0.5) {
       SimState trial = moved;
       coupling_.step(dz, alpha, trial);
-      if (std::isfinite(model_.energy().energy(trial.x))) {
+      if (std::isfinite(model_.totalEnergy(trial))) {
         x = std::move(trial);
         step = alpha * maxNorm(dz);
         return true;
       }
     }
-    if (std::isfinite(model_.energy().energy(moved.x))) {
+    if (std::isfinite(model_.totalEnergy(moved))) {
       x = std::move(moved);
       step = std::numeric_limits<double>::infinity();  // the prediction was dropped
       return true;
@@ -166,7 +169,7 @@ class Newton {
   // energy and is never accepted. Returns the step taken, 0 when none decreases the energy.
   double lineSearch(SimState& x, const Eigen::VectorXd& r, const Eigen::VectorXd& dz, double residual) {
     Stopwatch w{t_.lineSearch};
-    const double e0 = model_.energy().energy(x.x);
+    const double e0 = model_.totalEnergy(x);
     const double slope = r.dot(dz);
     // Below this predicted decrease the energy difference is lost in rounding; accept a valid
     // full step there (Newton is converging quadratically) instead of stalling.
@@ -174,7 +177,7 @@ class Newton {
     for (double alpha = 1.0; alpha > 1e-10; alpha *= 0.5) {
       SimState trial = x;
       coupling_.step(dz, alpha, trial);
-      const double e = model_.energy().energy(trial.x);
+      const double e = model_.totalEnergy(trial);
       if (!std::isfinite(e)) continue;
       if (e <= e0 + 1e-4 * alpha * slope || (-slope < roundoff && residual <= 1e3 * model_.forceTolerance())) {
         x = std::move(trial);

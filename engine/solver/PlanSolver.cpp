@@ -31,7 +31,7 @@ void summarize(Model& model, SolveResult& r) {
       r.chordIterations += s.chordIterations;
     }
   if (!any) {
-    r.energy = model.energy().energy(r.state.x);
+    r.energy = model.totalEnergy(r.state);
     r.minDetF = model.energy().minDetF(r.state.x);
   }
 }
@@ -41,6 +41,8 @@ void summarize(Model& model, SolveResult& r) {
 SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& targets, const SolverSettings& settings,
                       const SolveControl& control) {
   const auto t0 = std::chrono::steady_clock::now();
+  const long long queries0 = model.contact() ? model.contact()->queries() : 0;
+  const double contact0 = model.contactSeconds();
   SolveResult r;
   r.state = start;
   const double nominal = settings.substeps > 0 ? 1.0 / settings.substeps : 1.0;
@@ -82,6 +84,8 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
   r.loadFraction = s;
   r.converged = s >= 1.0;
   summarize(model, r);
+  r.timings.contactQueries = (model.contact() ? model.contact()->queries() : 0) - queries0;
+  r.timings.contact = model.contactSeconds() - contact0;
   r.timings.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

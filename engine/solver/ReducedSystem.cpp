@@ -171,6 +171,14 @@ void ReducedSystem::assemble(const SimState& state, const Eigen::Matrix3Xd& g, b
   addRotationCurvature(state, g, projectToPSD);
 }
 
+void ReducedSystem::addNodeBlock(int node, const Eigen::Matrix3d& K) {
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) {
+      const int dr = coupling_.dof(node, r), dc = coupling_.dof(node, c);
+      if (dr >= 0 && dc >= 0 && dr >= dc) H_.valuePtr()[valueIndex(H_, dr, dc)] += K(r, c);
+    }
+}
+
 // Second derivative of x = Rot(theta) a + p in theta, contracted with the nodal forces:
 // sum_i w (sym(g a^T) - (g.a) I). Clamped to positive semi-definite when projecting.
 void ReducedSystem::addRotationCurvature(const SimState& state, const Eigen::Matrix3Xd& g, bool projectToPSD) {

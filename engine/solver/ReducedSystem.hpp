@@ -19,6 +19,9 @@ class ReducedSystem {
   // Assembles the reduced Hessian at `state`; `g` is the full gradient there (for the curvature
   // of free-fragment rotations).
   void assemble(const SimState& state, const Eigen::Matrix3Xd& g, bool projectToPSD);
+  // Adds K to the block of a node's own free components (a contact's k u u^T); components that are
+  // not free are skipped.
+  void addNodeBlock(int node, const Eigen::Matrix3d& K);
   // Lower triangle (CSC) of the reduced Hessian.
   const Eigen::SparseMatrix<double>& matrix() const { return H_; }
   // P^T H dx for a full displacement dx: the reduced force a move of constrained nodes causes.

@@ -12,6 +12,8 @@ struct SolveTimings {
   double factorization = 0;  // CHOLMOD numeric factorisations
   double solve = 0;          // triangular solves
   double lineSearch = 0;     // energy evaluations of trial states
+  double contact = 0;        // contact queries (inside the other phases' times)
+  long long contactQueries = 0;  // node-surface distance queries; 0 in a scene without contact
   double total = 0;
   int factorizations = 0;
   int projectedFactorizations = 0;  // retried with the projected Hessian

@@ -1,0 +1,40 @@
+#pragma once
+// A rigid surface (bone, teeth) for contact, in its fragment's rest frame: signed distance, closest
+// point and outward normal of any point, from a CGAL AABB tree built once. The sign comes from the
+// angle-weighted pseudo-normal of the closest feature (face, edge or vertex), which is exact for a
+// closed outward surface and right near an open but consistently oriented one (a cropped bone).
+// Moving the fragment costs nothing: callers bring points into the rest frame. In orthosim_cgal;
+// no CGAL type here.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <memory>
+
+#include "mesh/SurfaceMesh.hpp"
+
+namespace orthosim {
+
+struct SurfacePoint {
+  double distance = 0;        // signed: negative inside the surface
+  Eigen::Vector3d closest;    // nearest point on the surface
+  Eigen::Vector3d normal;     // unit, outward: the direction that increases `distance`
+};
+
+class RigidSurface {
+ public:
+  // Throws std::invalid_argument for a surface without triangles of positive area, a bad index or
+  // a non-finite vertex.
+  explicit RigidSurface(const SurfaceMesh& surface);
+  ~RigidSurface();
+  RigidSurface(RigidSurface&&) noexcept;
+  RigidSurface& operator=(RigidSurface&&) noexcept;
+
+  SurfacePoint query(const Eigen::Vector3d& p) const;  // thread-safe
+  const Eigen::AlignedBox3d& bounds() const;
+  int numTriangles() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace orthosim
