@@ -1,11 +1,19 @@
 #include "contact/ContactEnergy.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace orthosim {
 
-ContactEnergy::ContactEnergy(std::vector<ContactPair> pairs) : pairs_(std::move(pairs)) {
+ContactEnergy::ContactEnergy(std::vector<ContactPair> pairs) : pairs_(std::move(pairs)), memo_(pairs_.size()) {
+  for (size_t k = 0; k < pairs_.size(); ++k) {
+    memo_[k].at.assign(pairs_[k].nodes.size(), Eigen::Vector3d::Zero());
+    memo_[k].clearance.assign(pairs_[k].nodes.size(), 0.0);
+    memo_[k].hits.resize(pairs_[k].nodes.size());
+    memo_[k].hit.resize(pairs_[k].nodes.size());
+  }
   for (size_t k = 0; k < pairs_.size(); ++k) {
     if (!pairs_[k].surface) throw std::invalid_argument("contact pair " + std::to_string(k) + " has no surface");
     if (!(pairs_[k].stiffness > 0) || !std::isfinite(pairs_[k].stiffness))
@@ -15,15 +23,28 @@ ContactEnergy::ContactEnergy(std::vector<ContactPair> pairs) : pairs_(std::move(
 
 std::vector<ActiveContact> ContactEnergy::active(const Eigen::Matrix3Xd& x, const std::vector<RigidPose>& poses) const {
   std::vector<ActiveContact> out;
-  for (const ContactPair& pair : pairs_) {
+  for (size_t p = 0; p < pairs_.size(); ++p) {
+    const ContactPair& pair = pairs_[p];
+    Memo& memo = memo_[p];
     const RigidPose pose = pair.fragment >= 0 ? poses.at(pair.fragment) : RigidPose::identity();
     const int n = static_cast<int>(pair.nodes.size());
-    std::vector<SurfacePoint> hits(n);
-#pragma omp parallel for schedule(dynamic, 64)
-    for (int k = 0; k < n; ++k) hits[k] = pair.surface->query(pose.R.transpose() * (x.col(pair.nodes[k]) - pose.b));
-    queries_ += n;
+    std::vector<char>& hit = memo.hit;
+    std::vector<SurfacePoint>& hits = memo.hits;
+    long long asked = 0;
+    for (int k = 0; k < n; ++k) {
+      hit[k] = 0;
+      const Eigen::Vector3d local = pose.R.transpose() * (x.col(pair.nodes[k]) - pose.b);
+      if ((local - memo.at[k]).norm() < memo.clearance[k]) continue;  // still outside
+      hits[k] = pair.surface->query(local);
+      ++asked;
+      memo.at[k] = local;
+      memo.clearance[k] = std::max(0.0, hits[k].distance);
+      hit[k] = hits[k].distance < 0;
+    }
+    queries_ += asked;
+    skipped_ += n - asked;
     for (int k = 0; k < n; ++k)
-      if (hits[k].distance < 0) out.push_back({pair.nodes[k], hits[k].distance, pose.R * hits[k].normal, pair.stiffness});
+      if (hit[k]) out.push_back({pair.nodes[k], hits[k].distance, pose.R * hits[k].normal, pair.stiffness});
   }
   return out;
 }

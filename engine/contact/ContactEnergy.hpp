@@ -34,19 +34,30 @@ class ContactEnergy {
  public:
   explicit ContactEnergy(std::vector<ContactPair> pairs);
 
-  // Nodes below their surface at positions x with fragment poses `poses`; queries every node of
-  // every pair (counted in queries()).
+  // Nodes below their surface at positions x with fragment poses `poses`. Not thread-safe (it
+  // keeps the memo that saves queries).
   std::vector<ActiveContact> active(const Eigen::Matrix3Xd& x, const std::vector<RigidPose>& poses) const;
   double energy(const std::vector<ActiveContact>& contacts) const;
   void addGradient(const std::vector<ActiveContact>& contacts, Eigen::Matrix3Xd& g) const;
   static Eigen::Matrix3d hessianBlock(const ActiveContact& c) { return c.stiffness * c.normal * c.normal.transpose(); }
 
   const std::vector<ContactPair>& pairs() const { return pairs_; }
-  long long queries() const { return queries_; }
+  long long queries() const { return queries_; }    // distance queries made
+  long long skipped() const { return skipped_; }    // node tests answered without a query
 
  private:
+  // Per pair and node: where it was last queried (rest frame of the surface) and how far outside
+  // it was. A node that has since moved less than that distance relative to the surface is still
+  // outside: no query needed (the distance is 1-Lipschitz).
+  struct Memo {
+    std::vector<Eigen::Vector3d> at;
+    std::vector<double> clearance;  // distance outside at `at`; 0: query again
+    std::vector<SurfacePoint> hits;  // this evaluation's answers (reused storage)
+    std::vector<char> hit;
+  };
   std::vector<ContactPair> pairs_;
-  mutable long long queries_ = 0;
+  mutable std::vector<Memo> memo_;
+  mutable long long queries_ = 0, skipped_ = 0;
 };
 
 }  // namespace orthosim

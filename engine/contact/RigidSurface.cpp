@@ -31,10 +31,15 @@ struct RigidSurface::Impl {
   std::vector<Eigen::Vector3d> faceNormal;       // unit
   std::vector<Eigen::Vector3d> vertexNormal;     // angle-weighted pseudo-normals
   std::map<std::pair<int, int>, Eigen::Vector3d> edgeNormal;  // sum of the two face normals
+  std::map<std::pair<int, int>, int> edgeUse;                 // 1: a border edge (open surface)
+  std::vector<char> borderVertex;
   Tree tree;
   Eigen::AlignedBox3d box;
 
-  Eigen::Vector3d pseudoNormal(int t, const Eigen::Vector3d& q) const {
+  // The pseudo-normal of the feature of triangle t that q lies on; `border` tells whether that
+  // feature is on the rim of an open surface (a crop or a cut), where no side is defined.
+  Eigen::Vector3d pseudoNormal(int t, const Eigen::Vector3d& q, bool& border) const {
+    border = false;
     // Barycentric coordinates of the closest point tell the feature it lies on.
     const Eigen::Vector3d a = vec(triangles[t][0]), b = vec(triangles[t][1]), c = vec(triangles[t][2]);
     const Eigen::Vector3d n = (b - a).cross(c - a);
@@ -45,11 +50,14 @@ struct RigidSurface::Impl {
     int nonzero[3], nz = 0;
     for (int k = 0; k < 3; ++k)
       if (w[k] >= eps) nonzero[nz++] = k;
-    if (nz == 1) return vertexNormal[corners[t][nonzero[0]]];
+    if (nz == 1) {
+      border = borderVertex[corners[t][nonzero[0]]] != 0;
+      return vertexNormal[corners[t][nonzero[0]]];
+    }
     if (nz == 2) {
-      const int u = corners[t][nonzero[0]], v = corners[t][nonzero[1]];
-      const auto it = edgeNormal.find(std::minmax(u, v));
-      if (it != edgeNormal.end()) return it->second;
+      const auto e = std::minmax(corners[t][nonzero[0]], corners[t][nonzero[1]]);
+      border = edgeUse.at(e) == 1;
+      return edgeNormal.at(e);
     }
     return faceNormal[t];
   }
@@ -76,11 +84,15 @@ RigidSurface::RigidSurface(const SurfaceMesh& s) : impl_(std::make_unique<Impl>(
       m.vertexNormal[c[k]] += std::acos(std::clamp(e1.dot(e2), -1.0, 1.0)) * m.faceNormal.back();
       auto [it, added] = m.edgeNormal.try_emplace(std::minmax(c[k], c[(k + 1) % 3]), Eigen::Vector3d::Zero());
       it->second += m.faceNormal.back();
+      ++m.edgeUse[std::minmax(c[k], c[(k + 1) % 3])];
       m.box.extend(p[k]);
     }
   }
   if (m.triangles.empty()) throw std::invalid_argument("rigid surface: no triangle of positive area");
   for (auto& n : m.vertexNormal) n = n.norm() > 0 ? n.normalized() : n;
+  m.borderVertex.assign(s.numVertices(), 0);
+  for (const auto& [e, uses] : m.edgeUse)
+    if (uses == 1) m.borderVertex[e.first] = m.borderVertex[e.second] = 1;
   for (auto& [e, n] : m.edgeNormal) n = n.norm() > 0 ? n.normalized() : n;
   m.tree.insert(m.triangles.cbegin(), m.triangles.cend());
   m.tree.build();
@@ -98,8 +110,10 @@ SurfacePoint RigidSurface::query(const Eigen::Vector3d& p) const {
   out.closest = vec(point);
   const Eigen::Vector3d d = p - out.closest;
   const double len = d.norm();
-  const Eigen::Vector3d pseudo = impl_->pseudoNormal(t, out.closest);
-  const double sign = d.dot(pseudo) < 0 ? -1.0 : 1.0;
+  bool border = false;
+  const Eigen::Vector3d pseudo = impl_->pseudoNormal(t, out.closest, border);
+  // Nearest to the rim of an open surface: beside it, not inside.
+  const double sign = !border && d.dot(pseudo) < 0 ? -1.0 : 1.0;
   out.distance = sign * len;
   // Off the surface the gradient of the distance is the unit vector from the closest point; on it,
   // the pseudo-normal.

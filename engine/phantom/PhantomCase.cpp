@@ -21,6 +21,8 @@ nlohmann::json phantomCaseJson(const Phantom& p) {
              {{{"landmark", "stomion"}, {"radius_mm", 25}, {"density", 3}},
               {{"landmark", "pronasale"}, {"radius_mm", 18}, {"density", 3}},
               {{"landmark", "soft_pogonion"}, {"radius_mm", 18}, {"density", 2}}}}}},
+          // Lips and cheeks slide on the teeth and bone of both jaws.
+          {"contact", {{{"bones", {"mandible", "skull"}}, {"range_mm", 15}}}},
           {"plan", {{"maxilla", {{"translation_mm", {-5, 0, 0}}}}}}};
 }
 

@@ -61,6 +61,17 @@ int FragmentCoupling::fragmentIndex(const std::string& name) const {
   return -1;
 }
 
+std::vector<int> locateOnBone(const std::vector<BoneGroup>& groups, const std::vector<FragmentRegion>& regions,
+                              const std::string& bone, const Eigen::Matrix3Xd& points) {
+  FragmentCoupling names;
+  const FragmentLocator locate(names, groups, regions);
+  const int boneFragment = names.fragmentIndex(bone);
+  if (boneFragment < 0) throw std::invalid_argument("no bone named '" + bone + "'");
+  std::vector<int> out(points.cols());
+  for (Eigen::Index i = 0; i < points.cols(); ++i) out[i] = locate.at(bone, boneFragment, points.col(i));
+  return out;
+}
+
 FragmentCoupling splitBoneGroups(const Eigen::Matrix3Xd& rest, const std::vector<BoneGroup>& groups,
                                  const std::vector<FragmentRegion>& regions, double width) {
   if (!(width > 0) || !std::isfinite(width)) throw std::invalid_argument("cut blend width must be a positive number of mm");

@@ -32,6 +32,11 @@ struct FragmentCoupling {
 // fragment just across the nearest cut plane that bounds a different fragment. Throws
 // std::invalid_argument naming the defect: a region whose parent is no bone or earlier fragment,
 // a duplicate fragment name, a node out of range, a bad width.
+// The fragment (index into splitBoneGroups' fragments for the same groups and regions) each point
+// of bone `bone` lies in: the last region of that bone containing it, else the bone's rest.
+std::vector<int> locateOnBone(const std::vector<BoneGroup>& groups, const std::vector<FragmentRegion>& regions,
+                              const std::string& bone, const Eigen::Matrix3Xd& points);
+
 FragmentCoupling splitBoneGroups(const Eigen::Matrix3Xd& rest, const std::vector<BoneGroup>& groups,
                                  const std::vector<FragmentRegion>& regions, double width = kDefaultCutBlendWidth);
 

@@ -175,7 +175,7 @@ CaseSpec loadCaseFile(const std::string& path) {
   const json j = parseJsonFile(path);
   JsonReader root(path, j, "");
   for (const char* k : {"units", "name", "frame", "tissue", "bones", "fixed", "landmarks", "cuts", "blend_width_mm",
-                        "meshing", "plan", "solver"})
+                        "meshing", "contact", "plan", "solver"})
     root.has(k);
   root.rejectUnknown();
   if (root.has("units") && root.string("units") != "mm") root.fail("only \"mm\" is supported", "units");
@@ -233,6 +233,28 @@ CaseSpec loadCaseFile(const std::string& path) {
   if (root.has("meshing")) {
     if (c.isVolume()) root.fail("applies to surface cases only (the tetrahedra are given)", "meshing");
     readMeshing(root.child("meshing"), c.landmarks, c.meshing);
+  }
+
+  if (root.has("contact")) {
+    root.forEach("contact", [&](JsonReader r) {
+      CaseContact contact;
+      const json& bones = r.get("bones");
+      if (!bones.is_array()) r.fail("must be an array of bone names", "bones");
+      for (const json& b : bones) {
+        bool known = false;
+        for (const CaseBone& cb : c.bones) known = known || (b.is_string() && cb.name == b.get<std::string>());
+        if (!known) r.fail(b.dump() + " is no bone of this case", "bones");
+        contact.bones.push_back(b.get<std::string>());
+      }
+      if (contact.bones.empty()) r.fail("must list at least one bone", "bones");
+      contact.rangeMm = r.number("range_mm", contact.rangeMm);
+      if (!(contact.rangeMm > 0 && contact.rangeMm <= 100)) r.fail("must lie in (0, 100] mm", "range_mm");
+      contact.stiffness = r.number("stiffness_n_per_mm", contact.stiffness);
+      if (!(contact.stiffness > 0) || !std::isfinite(contact.stiffness))
+        if (r.has("stiffness_n_per_mm")) r.fail("must be a positive number of N/mm", "stiffness_n_per_mm");
+      r.rejectUnknown();
+      c.contacts.push_back(contact);
+    });
   }
 
   if (root.has("plan")) {

@@ -52,6 +52,15 @@ struct CaseFixed {
   std::array<bool, 3> components{true, true, true};
 };
 
+// Lips and cheeks on teeth and bone: the tissue's free inner-surface nodes (not on the skin)
+// within range_mm of a listed bone at rest may not go below that bone's surface, each piece moving
+// with its fragment after the cuts.
+struct CaseContact {
+  std::vector<std::string> bones;
+  double rangeMm = 15;
+  double stiffness = 0;  // N/mm per node; 0: the default (10 E h)
+};
+
 struct CaseSpec {
   std::string file;       // the case file, absolute
   std::string name;
@@ -70,6 +79,7 @@ struct CaseSpec {
   std::vector<FragmentRegion> regions;  // what the cuts make, in order
   double blendWidth = 10.0;             // mm
   CaseMeshing meshing;
+  std::vector<CaseContact> contacts;
   std::map<std::string, FragmentMotion> plan;
   SolverSettings solver;
 

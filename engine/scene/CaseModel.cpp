@@ -3,9 +3,79 @@
 #include <set>
 #include <sstream>
 
+#include "mesh/BoundaryFaces.hpp"
+#include "mesh/SurfaceCheck.hpp"
+#include "mesh/SurfaceDistance.hpp"
+#include "mesh/SurfaceImport.hpp"
 #include "scene/SceneFields.hpp"
 
 namespace orthosim {
+
+namespace {
+
+// The bone's triangles that lie in fragment f (by their centroids), as a surface of their own.
+SurfaceMesh trianglesOf(const SurfaceMesh& bone, const std::vector<int>& fragmentOf, int f) {
+  SurfaceMesh out;
+  out.vertices = bone.vertices;
+  std::vector<int> keep;
+  for (int t = 0; t < bone.numTriangles(); ++t)
+    if (fragmentOf[t] == f) keep.push_back(t);
+  out.triangles.resize(3, static_cast<Eigen::Index>(keep.size()));
+  for (size_t k = 0; k < keep.size(); ++k) out.triangles.col(static_cast<Eigen::Index>(k)) = bone.triangles.col(keep[k]);
+  return out;
+}
+
+// Contact pairs of the case: for every listed bone and every fragment cut from it, the fragment's
+// part of the bone surface against the tissue's free inner-surface nodes within range of it.
+std::vector<ContactSpec> caseContacts(const CaseSpec& spec, const CaseTissue& tissue, const Scene& scene,
+                                      const std::vector<BoneGroup>& groups) {
+  std::vector<ContactSpec> out;
+  if (spec.contacts.empty()) return out;
+  std::vector<char> held(scene.mesh.numNodes(), 0), skin(scene.mesh.numNodes(), 0), boundary(scene.mesh.numNodes(), 0);
+  for (int n : tissue.skinNodes) skin[n] = 1;
+  for (const FragmentSpec& f : scene.fragments)
+    for (int n : f.nodes) held[n] = 1;
+  for (const BlendedNode& b : scene.blended) held[b.node] = 1;
+  for (const FixedSpec& f : scene.fixed)
+    if (f.components[0] && f.components[1] && f.components[2])
+      for (int n : f.nodes) held[n] = 1;
+  const Eigen::Matrix3Xi faces = boundaryFaces(scene.mesh);
+  for (Eigen::Index i = 0; i < faces.size(); ++i) boundary[faces.data()[i]] = 1;
+  std::vector<int> candidates;
+  for (int n = 0; n < scene.mesh.numNodes(); ++n)
+    if (boundary[n] && !held[n] && !skin[n]) candidates.push_back(n);
+  Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(candidates.size()));
+  for (size_t k = 0; k < candidates.size(); ++k) points.col(static_cast<Eigen::Index>(k)) = scene.mesh.rest.col(candidates[k]);
+
+  for (size_t c = 0; c < spec.contacts.size(); ++c)
+    for (const std::string& boneName : spec.contacts[c].bones) {
+      size_t b = 0;
+      while (spec.bones[b].name != boneName) ++b;
+      SurfaceMesh bone = importSurface(spec.bones[b].surface);
+      checkSurface(bone, spec.file + ": bones[" + std::to_string(b) + "].surface", SurfaceRequirement::OpenAllowed);  // outward
+      Eigen::Matrix3Xd centroids(3, bone.numTriangles());
+      for (int t = 0; t < bone.numTriangles(); ++t)
+        centroids.col(t) = (bone.vertices.col(bone.triangles(0, t)) + bone.vertices.col(bone.triangles(1, t)) +
+                            bone.vertices.col(bone.triangles(2, t))) / 3.0;
+      const std::vector<int> fragmentOf = locateOnBone(groups, spec.regions, boneName, centroids);
+      std::set<int> fragments(fragmentOf.begin(), fragmentOf.end());
+      for (int f : fragments) {
+        ContactSpec contact;
+        contact.fragment = scene.fragments[f].name;
+        contact.name = boneName + " (" + contact.fragment + ")";
+        contact.surface = trianglesOf(bone, fragmentOf, f);
+        contact.stiffness = spec.contacts[c].stiffness;
+        if (candidates.empty()) continue;
+        const Eigen::VectorXd d = distancesToSurface(contact.surface.vertices, contact.surface.triangles, points);
+        for (size_t k = 0; k < candidates.size(); ++k)
+          if (d[static_cast<Eigen::Index>(k)] <= spec.contacts[c].rangeMm) contact.nodes.push_back(candidates[k]);
+        if (!contact.nodes.empty()) out.push_back(std::move(contact));
+      }
+    }
+  return out;
+}
+
+}  // namespace
 
 Scene caseScene(const CaseSpec& spec, const CaseTissue& tissue, FragmentCoupling* couplingOut) {
   if (tissue.boneNodes.size() != spec.bones.size())
@@ -43,6 +113,11 @@ Scene caseScene(const CaseSpec& spec, const CaseTissue& tissue, FragmentCoupling
     for (int i : readNodeSet(spec.fixed[k].nodes, scene.mesh.numNodes(), "fixed[" + std::to_string(k) + "].nodes"))
       if (!coupled.count(i)) fixed.nodes.push_back(i);
     scene.fixed.push_back(std::move(fixed));
+  }
+  try {
+    scene.contacts = caseContacts(spec, tissue, scene, groups);
+  } catch (const std::exception& e) {
+    throw SceneError(spec.file + ": contact: " + e.what());
   }
   if (couplingOut) *couplingOut = std::move(coupling);
   return scene;

@@ -127,8 +127,6 @@ class Newton {
       Stopwatch w{t_.assembly};
       g = model_.totalGradient(x);
       rhs = -(coupling_.reduce(g, x) + model_.system().hessianTimes(x, dxc, settings_.hessian == HessianMode::Projected));
-      // A moved contact surface changes the contact forces without moving any node.
-      if (model_.contact()) rhs -= coupling_.reduce(model_.contactGradient(moved) - model_.contactGradient(x), moved);
     }
     if (dxc.isZero(0.0) && maxNorm(rhs) <= model_.forceTolerance()) {  // nothing moves: no prediction
       x = std::move(moved);  // the poses of node-less fragments (contact surfaces) still change
