@@ -36,6 +36,9 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--case", caseBench.casePath, "Time building a case's models instead (surface-based case file)")
       ->check(CLI::ExistingFile);
   benchCmd->add_flag("--phantom", benchPhantom, "Time building the phantom's coarse and fine models instead");
+  benchCmd->add_option("--plan", caseBench.planPath,
+                       "With --phantom or --case: a JSON file {fragment: {translation_mm, rotation_deg, center_mm}} "
+                       "solved instead of the case's plan")->check(CLI::ExistingFile);
   benchCmd->add_option("--variant", caseBench.phantomVariant, "Phantom variant for --phantom")->check(CLI::Range(0, 100));
 
   int phantomVariant = 0;

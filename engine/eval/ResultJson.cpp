@@ -70,7 +70,8 @@ nlohmann::json resultToJson(const Model& model, const SolveResult& r) {
   const auto& t = r.timings;
   out["timings_s"] = {{"assembly", t.assembly}, {"factorization", t.factorization}, {"solve", t.solve},
                       {"line_search", t.lineSearch}, {"total", t.total}, {"factorizations", t.factorizations},
-                      {"projected_factorizations", t.projectedFactorizations}};
+                      {"projected_factorizations", t.projectedFactorizations}, {"contact", t.contact},
+                      {"contact_queries", t.contactQueries}};
   return out;
 }
 

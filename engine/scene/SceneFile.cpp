@@ -7,6 +7,8 @@
 #include <set>
 #include <sstream>
 
+#include "mesh/SurfaceCheck.hpp"
+#include "mesh/SurfaceImport.hpp"
 #include "mesh/TetgenIO.hpp"
 #include "scene/SceneFields.hpp"
 
@@ -58,7 +60,7 @@ Scene loadSceneFile(const std::string& path) {
   Scene scene;
   JsonReader root(path, j, "");
   // Unknown top-level fields first: a misspelt section must not surface as its consequences.
-  for (const char* k : {"units", "tissue", "fragments", "fixed", "blended", "plan", "solver"}) root.has(k);
+  for (const char* k : {"units", "tissue", "fragments", "fixed", "blended", "contact", "plan", "solver"}) root.has(k);
   root.rejectUnknown();
   if (root.has("units") && root.string("units") != "mm") root.fail("only \"mm\" is supported", "units");
 
@@ -114,6 +116,30 @@ Scene loadSceneFile(const std::string& path) {
     JsonReader r = root.child("blended");
     scene.blended = readBlendFile(resolvePath(base, r.string("weights")), scene, r.sub("weights"));
     r.rejectUnknown();
+  }
+
+  if (root.has("contact")) {
+    root.forEach("contact", [&](JsonReader r) {
+      ContactSpec c;
+      c.name = r.has("name") ? r.string("name") : r.path();
+      c.nodes = readNodeSet(resolvePath(base, r.string("nodes")), n, r.sub("nodes"));
+      const std::string file = resolvePath(base, r.string("surface"));
+      try {
+        c.surface = importSurface(file);
+        checkSurface(c.surface, file, SurfaceRequirement::OpenAllowed);  // outward where closed
+      } catch (const std::exception& e) {
+        r.fail(e.what(), "surface");
+      }
+      if (r.has("fragment")) {
+        c.fragment = r.string("fragment");
+        if (!scene.fragmentIndex(c.fragment)) r.fail("unknown fragment '" + c.fragment + "'", "fragment");
+      }
+      c.stiffness = r.number("stiffness_n_per_mm", 0.0);
+      if (r.has("stiffness_n_per_mm") && !(c.stiffness > 0 && std::isfinite(c.stiffness)))
+        r.fail("must be a positive number of N/mm", "stiffness_n_per_mm");
+      r.rejectUnknown();
+      scene.contacts.push_back(std::move(c));
+    });
   }
 
   if (root.has("plan")) {

@@ -21,18 +21,19 @@ Model::Model(Scene scene) : scene_(std::move(scene)) {
   coupling_ = std::make_unique<Coupling>(scene_);
   if (coupling_->numReducedDofs() == 0) throw std::invalid_argument("the scene has no free degrees of freedom");
   energy_->restrictTo(elementsWithFreedom());
+  lengthScale_ = scene_.mesh.meanEdgeLength();
   buildContact();
   system_ = std::make_unique<ReducedSystem>(*energy_, *coupling_);
   factor_.analyze(system_->matrix());
   // The rest Hessian is positive definite exactly when every part of the tissue is held: check it
   // now, and keep its factorisation for the first substep of every solve that starts from rest.
+  // (Elastic only: contact must not hide tissue that nothing holds.)
   const SimState rest = restState();
-  assemble(rest, totalGradient(rest), false);
+  system_->assemble(rest, energy_->gradient(rest.x), false);
   restFactor_.analyze(system_->matrix());
   if (!restFactor_.factorize(system_->matrix()))
     throw std::invalid_argument("part of the tissue is held by nothing (the stiffness matrix at rest is singular): "
                                 "check that every connected piece of tissue has fixed or bonded nodes");
-  lengthScale_ = scene_.mesh.meanEdgeLength();
   buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 

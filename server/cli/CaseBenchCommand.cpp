@@ -13,6 +13,8 @@
 #include "cli/Commands.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseModel.hpp"
+#include "scene/JsonReader.hpp"
+#include "scene/SceneFields.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim::cli {
@@ -41,7 +43,7 @@ struct ResolutionFigures {
 };
 
 ResolutionFigures benchResolution(const CaseSpec& spec, Resolution res, int repeats, const std::string& cacheDir) {
-  std::vector<double> cold, cached, modelBuild, solve;
+  std::vector<double> cold, cached, modelBuild, solve, contact;
   CaseTissue tissue;
   for (int r = 0; r < repeats; ++r) {
     tissue = buildCaseTissue(spec, res, {});
@@ -66,6 +68,7 @@ ResolutionFigures benchResolution(const CaseSpec& spec, Resolution res, int repe
     result = solveScene(*model);
     if (!result.converged) throw std::runtime_error(std::string(resolutionName(res)) + " solve failed: " + result.error);
     solve.push_back(result.timings.total);
+    contact.push_back(result.timings.contact);
   }
   const PointEmbedding embedding = embedPoints(tissue.mesh, tissue.skin.vertices);
   ResolutionFigures f;
@@ -82,12 +85,19 @@ ResolutionFigures benchResolution(const CaseSpec& spec, Resolution res, int repe
            {"cached_open_s", cached.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(cached))},
            {"model_build_s", median(modelBuild)},
            {"solve_s", median(solve)},
+           {"contact_s", median(contact)},
+           {"contact_queries", result.timings.contactQueries},
+           {"contact_pairs", scene.contacts.size()},
            {"newton_iterations", result.iterations},
            {"chord_iterations", result.chordIterations}};
   std::printf("%-7s %8d %8d %8d %7.1f %7.2f %9.2f %9s %9.3f %8.3f %4d+%d\n", resolutionName(res), tissue.skinTriangles,
               q.nodes, q.tets, q.minDihedralDeg, q.maxRadiusEdgeRatio, median(cold),
               cached.empty() ? "-" : std::to_string(median(cached)).substr(0, 6).c_str(), median(modelBuild), median(solve),
               result.iterations, result.chordIterations);
+  if (!scene.contacts.empty())
+    std::printf("        contact: %zu pairs, %.4f s of the %.3f s solve (%.1f%%), %lld distance queries\n",
+                scene.contacts.size(), median(contact), median(solve), 100 * median(contact) / median(solve),
+                result.timings.contactQueries);
   std::fflush(stdout);
   return f;
 }
@@ -103,7 +113,19 @@ int runCaseBench(const CaseBenchOptions& opt) {
     casePath = writePhantomCase(opt.phantomVariant, (work / "phantom").string());
     std::printf("phantom variant %d written in %.2f s\n", opt.phantomVariant, since(t0));
   }
-  const CaseSpec spec = loadCaseFile(casePath);
+  CaseSpec spec = loadCaseFile(casePath);
+  if (!opt.planPath.empty()) {
+    const nlohmann::json plan = parseJsonFile(opt.planPath);
+    JsonReader r(opt.planPath, plan, "");
+    spec.plan.clear();
+    for (const auto& [name, motion] : plan.items()) {
+      r.has(name);
+      const auto names = spec.fragmentNames();
+      if (std::find(names.begin(), names.end(), name) == names.end()) r.fail("unknown fragment '" + name + "'", name);
+      spec.plan[name] = readFragmentMotion(JsonReader(opt.planPath, motion, name));
+    }
+    r.rejectUnknown();
+  }
   std::printf("orthosim bench: case '%s', medians of %d runs; %u hardware threads\n"
               "cold_s: surfaces to tetrahedra without cache; cached_s: the same read from the cache;\n"
               "model_s: solver model build (pattern, analysis, rest factorisation); solve_s: the case's plan\n\n",

@@ -31,6 +31,7 @@ struct CaseBenchOptions {
   int phantomVariant = 0;
   int repeats = 3;
   std::string jsonPath;
+  std::string planPath;   // JSON object {fragment: motion} replacing the case's plan; empty: keep it
 };
 int runCaseBench(const CaseBenchOptions& options);
 

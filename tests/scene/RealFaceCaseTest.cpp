@@ -5,6 +5,8 @@
 // maxilla, blended over 10 mm at the cut as for any case. A Le Fort I advancement and a mandibular
 // setback move the face as published ratios say. Skipped without ../shared.
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <unistd.h>
 
 #include <filesystem>
@@ -52,6 +54,8 @@ class RealFaceCase : public ::testing::Test {
          {{"upper_incisor_apex", {52, 0, 122}}, {"PNS", {106.5, 0, 123.6}}, {"upper_molar_left", {80, -25, 103}},
           {"upper_molar_right", {80, 25, 103}}}},
         {"cuts", {{{"template", "le_fort_1"}, {"bone", "midface"}}}},
+        // Lips and cheeks slide on the teeth of both jaws.
+        {"contact", {{{"bones", {"midface", "mandible"}}, {"range_mm", 15}}}},
         {"plan", plan}};
     std::ofstream(dir_ / "case.json") << c.dump(2);
     return loadCaseFile((dir_ / "case.json").string());
@@ -107,6 +111,16 @@ TEST_F(RealFaceCase, DerivesTheMaxillaGroupFromTheDeepSurfaceAndReportsIt) {
     for (int i : f.nodes) EXPECT_FALSE(bonded[i]) << "node " << i;
   // The skin is the mesh's own boundary, read back in single precision (assimp).
   EXPECT_LT(m.skinEmbedding.maxOutsideDistance(), 1e-4);
+  // Lips-teeth contact: each fragment's part of the maxilla and mandible surfaces, against the free
+  // boundary nodes within 15 mm (the lips' inner and outer surfaces among them).
+  std::vector<std::string> carriers;
+  for (const ContactSpec& c : m.scene.contacts) {
+    std::cout << "contact " << c.name << ": " << c.nodes.size() << " nodes, " << c.surface.numTriangles() << " triangles\n";
+    carriers.push_back(c.fragment);
+    for (int n : c.nodes) EXPECT_FALSE(bonded[n]) << "node " << n;
+  }
+  for (const char* f : {"maxilla", "mandible"})
+    EXPECT_NE(std::find(carriers.begin(), carriers.end(), f), carriers.end()) << f;
 }
 
 TEST_F(RealFaceCase, LeFortOneAdvancementMovesTheUpperLipAndLittleElse) {

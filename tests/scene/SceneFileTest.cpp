@@ -16,6 +16,8 @@
 #include <string>
 
 #include "mesh/BoxMesh.hpp"
+#include "mesh/SurfaceImport.hpp"
+#include "mesh/SurfacePrimitives.hpp"
 #include "mesh/TetgenIO.hpp"
 #include "scene/RigidPose.hpp"
 #include "scene/SceneFile.hpp"
@@ -177,6 +179,37 @@ TEST_F(SceneFileTest, NodeSetNonNumericToken) {
   const std::string msg2 = loadError(writeScene(baseScene()));
   EXPECT_TRUE(contains(msg2, "lower.txt:1")) << msg2;
   EXPECT_TRUE(contains(msg2, "'11.5'")) << msg2;
+}
+
+// A contact pair: tissue nodes from a node set, a surface file (any assimp format) moving with a
+// fragment, a stiffness; each field's defect is named.
+TEST_F(SceneFileTest, ContactPairsAreReadAndTheirDefectsNamed) {
+  const SurfaceMesh plate = makeIcosphere(3, 2, Eigen::Vector3d(10, 5, 14));
+  exportSurface(plate, path("plate.stl").string());
+  write("top.txt", "1 3 5 7 9 11\n");
+  json s = baseScene();
+  s["contact"] = json::array({{{"name", "plate"}, {"nodes", "top.txt"}, {"surface", "plate.stl"}, {"fragment", "lower"},
+                               {"stiffness_n_per_mm", 2.5}}});
+  const Scene scene = loadSceneFile(writeScene(s));
+  ASSERT_EQ(scene.contacts.size(), 1u);
+  EXPECT_EQ(scene.contacts[0].name, "plate");
+  EXPECT_EQ(scene.contacts[0].nodes, (std::vector<int>{1, 3, 5, 7, 9, 11}));
+  EXPECT_EQ(scene.contacts[0].fragment, "lower");
+  EXPECT_EQ(scene.contacts[0].stiffness, 2.5);
+  EXPECT_EQ(scene.contacts[0].surface.numTriangles(), plate.numTriangles());
+
+  json bad = s;
+  bad["contact"][0]["fragment"] = "chin";
+  EXPECT_TRUE(contains(loadError(writeScene(bad)), "contact[0].fragment: unknown fragment 'chin'"));
+  bad = s;
+  bad["contact"][0]["surface"] = "missing.stl";
+  EXPECT_TRUE(contains(loadError(writeScene(bad)), "contact[0].surface"));
+  bad = s;
+  bad["contact"][0]["stiffness_n_per_mm"] = -1;
+  EXPECT_TRUE(contains(loadError(writeScene(bad)), "contact[0].stiffness_n_per_mm: must be a positive number"));
+  bad = s;
+  bad["contact"][0]["frobnicate"] = 1;
+  EXPECT_TRUE(contains(loadError(writeScene(bad)), "frobnicate"));
 }
 
 TEST_F(SceneFileTest, UnknownFragmentInPlan) {
