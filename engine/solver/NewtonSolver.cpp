@@ -5,11 +5,13 @@
 #include <cstdlib>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace orthosim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+constexpr size_t kStallWindow = 8;  // iterations
 
 struct Stopwatch {
   double& total;
@@ -31,6 +33,7 @@ class Newton {
     if (!predict(targets, x, rep, lastStep)) return rep;
     double lastResidual = std::numeric_limits<double>::infinity();
     double lastAlpha = 0.0;
+    std::vector<double> history;  // residual per iteration
     bool lastWasChord = false;
     for (int it = 0;; ++it) {
       if (control_.cancelled()) return fail(rep, kCancelled);
@@ -51,6 +54,13 @@ class Newton {
       if (it == settings_.maxIterations)
         return fail(rep, "no convergence in " + std::to_string(it) + " Newton iterations (residual " +
                              std::to_string(rep.residual) + " N)");
+      // Newton converges fast or not at all: when the residual has not dropped tenfold over the
+      // last kStallWindow iterations (contacts opening and closing, each step cut by the line
+      // search), a shorter substep is cheaper than running out the iterations.
+      history.push_back(rep.residual);
+      if (history.size() > kStallWindow && rep.residual > 0.1 * history[history.size() - 1 - kStallWindow])
+        return fail(rep, "Newton stalled: the residual (" + std::to_string(rep.residual) + " N) did not drop tenfold in " +
+                             std::to_string(kStallWindow) + " iterations");
       // In the fast-converging regime (a full step cut the residual fourfold) the Hessian barely
       // changes: reuse the factorisation (a chord step) instead of refactoring.
       const bool chord = model_.factor().valid() && it > 0 && lastAlpha == 1.0 && rep.residual < 0.25 * lastResidual;
