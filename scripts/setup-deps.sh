@@ -16,6 +16,7 @@ PACKAGES=(
   libtet1.5-dev          # TetGen 1.5: tetrahedralises closed surfaces (engine/mesh/Tetrahedralize)
   libmeshoptimizer-dev   # surface simplification to coarse/fine skin counts (engine/mesh)
   libturbojpeg0-dev      # JPEG: phantom skin texture, streamed frames
+  libboost-dev           # Boost 1.74 headers: Beast/Asio HTTP and WebSocket server (server/net), header-only
 )
 
 missing=()

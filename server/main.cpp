@@ -48,6 +48,13 @@ int main(int argc, char** argv) {
   phantom->add_option("--variant", phantomVariant, "Morphology variant (see --help of the case: 0 class I, ...)")
       ->check(CLI::Range(0, 100));
 
+  orthosim::cli::ServeOptions serveOptions;
+  serveOptions.webDir = ORTHOSIM_WEB_DIR;
+  auto* serve = app.add_subcommand("serve", "Serve the planning API and the browser page over HTTP");
+  serve->add_option("--host", serveOptions.host, "Address to bind (default 127.0.0.1: this machine only)");
+  serve->add_option("--port", serveOptions.port, "TCP port; 0 picks a free one")->check(CLI::Range(0, 65535));
+  serve->add_option("--web", serveOptions.webDir, "Folder of the browser page (default: the source tree's web/)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -68,6 +75,7 @@ int main(int argc, char** argv) {
     }
     if (*benchCmd) return orthosim::cli::runBench(bench);
     if (*phantom) return orthosim::cli::runPhantom(phantomVariant, phantomOut);
+    if (*serve) return orthosim::cli::runServe(serveOptions);
   } catch (const std::exception& e) {
     std::cerr << "orthosim: " << e.what() << "\n";
     return 1;

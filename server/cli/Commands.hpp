@@ -38,4 +38,13 @@ int runCaseBench(const CaseBenchOptions& options);
 // Writes the built-in phantom head (variant N) as a surface-based case under outDir.
 int runPhantom(int variant, const std::string& outDir);
 
+struct ServeOptions {
+  std::string host = "127.0.0.1";
+  int port = 8080;     // 0: any free port; the chosen one is printed as "listening on http://HOST:PORT"
+  std::string webDir;  // the browser page folder
+};
+// Serves HTTP (and later the WebSocket API) until SIGINT or SIGTERM; 0 on a clean stop, 1 when
+// the server cannot start (bad host, port taken, no web folder).
+int runServe(const ServeOptions& options);
+
 }  // namespace orthosim::cli

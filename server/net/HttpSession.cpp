@@ -1,0 +1,98 @@
+#include "net/HttpSession.hpp"
+
+#include <boost/asio/dispatch.hpp>
+
+#include "net/JsonResponses.hpp"
+
+namespace orthosim::net {
+namespace beast = boost::beast;
+namespace {
+
+constexpr std::size_t kMaxDrainBytes = 1024 * 1024;
+constexpr std::chrono::seconds kDrainTimeout{2};
+
+// The reply to a request the parser rejected, or nullopt when the connection just ended.
+std::optional<StringResponse> parseErrorReply(beast::error_code ec, const HttpLimits& limits) {
+  const ReplyTo to{11, false, false};
+  if (ec == http::error::body_limit)
+    return jsonError(http::status::payload_too_large, "body_too_large",
+                     "request body over the limit of " + std::to_string(limits.bodyBytes) + " bytes", "", to);
+  if (ec == http::error::header_limit)
+    return jsonError(http::status::request_header_fields_too_large, "header_too_large",
+                     "request headers over the limit of " + std::to_string(limits.headerBytes) + " bytes", "", to);
+  const bool parseError = &ec.category() == &http::make_error_code(http::error::bad_target).category();
+  if (parseError && ec != http::error::partial_message)  // partial: the client left mid-request
+    return jsonError(http::status::bad_request, "bad_request", "malformed HTTP request: " + ec.message(), "", to);
+  return std::nullopt;  // end of stream, timeout, reset: nobody to answer
+}
+
+}  // namespace
+
+HttpSession::HttpSession(boost::asio::ip::tcp::socket&& socket, std::shared_ptr<const Router> router,
+                         const HttpLimits& limits)
+    : stream_(std::move(socket)), router_(std::move(router)), limits_(limits) {}
+
+void HttpSession::start() {
+  // The socket was accepted on this session's strand; run on it from the start.
+  boost::asio::dispatch(stream_.get_executor(), beast::bind_front_handler(&HttpSession::readRequest, shared_from_this()));
+}
+
+void HttpSession::readRequest() {
+  parser_.emplace();
+  parser_->header_limit(static_cast<std::uint32_t>(limits_.headerBytes));
+  parser_->body_limit(limits_.bodyBytes);
+  stream_.expires_after(limits_.idleTimeout);
+  http::async_read(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::onRead, shared_from_this()));
+}
+
+void HttpSession::onRead(beast::error_code ec, std::size_t) {
+  if (ec == http::error::end_of_stream) {
+    beast::error_code ignored;
+    stream_.socket().shutdown(boost::asio::ip::tcp::socket::shutdown_send, ignored);
+    return;
+  }
+  if (ec) {
+    if (std::optional<StringResponse> reply = parseErrorReply(ec, limits_)) send(std::move(*reply), true);
+    return;  // otherwise the session ends here and its socket closes
+  }
+  // Later: a WebSocket upgrade to /ws hands the stream and parser_->release() to a WebSocket session.
+  Response response = router_->handle(parser_->get());
+  const bool closeAfter = std::visit([](const auto& r) { return r.need_eof(); }, response);
+  send(std::move(response), closeAfter);
+}
+
+void HttpSession::send(Response&& response, bool closeAfter) {
+  response_ = std::move(response);
+  stream_.expires_after(limits_.idleTimeout);
+  std::visit(
+      [&](auto& message) {
+        http::async_write(stream_, message,
+                          beast::bind_front_handler(&HttpSession::onWrite, shared_from_this(), closeAfter));
+      },
+      response_);
+}
+
+void HttpSession::onWrite(bool closeAfter, beast::error_code ec, std::size_t) {
+  if (ec) return;
+  if (closeAfter) return drainThenClose();
+  response_ = StringResponse{};  // release an open file now rather than at the next write
+  readRequest();
+}
+
+void HttpSession::drainThenClose() {
+  beast::error_code ignored;
+  stream_.socket().shutdown(boost::asio::ip::tcp::socket::shutdown_send, ignored);
+  stream_.expires_after(kDrainTimeout);
+  buffer_.consume(buffer_.size());
+  stream_.async_read_some(buffer_.prepare(16 * 1024),
+                          beast::bind_front_handler(&HttpSession::onDrain, shared_from_this()));
+}
+
+void HttpSession::onDrain(beast::error_code ec, std::size_t bytes) {
+  drained_ += bytes;
+  if (ec || drained_ > kMaxDrainBytes) return;  // client closed, timed out or sends too much: close
+  stream_.async_read_some(buffer_.prepare(16 * 1024),
+                          beast::bind_front_handler(&HttpSession::onDrain, shared_from_this()));
+}
+
+}  // namespace orthosim::net

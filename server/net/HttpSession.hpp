@@ -1,0 +1,41 @@
+#pragma once
+// One HTTP connection: reads a request, answers it through the Router, repeats while the client
+// keeps the connection alive. Requests over the size limits get 413 / 431 and the connection is
+// closed. (Modelled on Beast's advanced_server; its WebSocket upgrade hook goes into onRead.)
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <memory>
+#include <optional>
+
+#include "net/HttpLimits.hpp"
+#include "net/HttpMessages.hpp"
+#include "net/Router.hpp"
+
+namespace orthosim::net {
+
+class HttpSession : public std::enable_shared_from_this<HttpSession> {
+ public:
+  HttpSession(boost::asio::ip::tcp::socket&& socket, std::shared_ptr<const Router> router, const HttpLimits& limits);
+
+  void start();
+
+ private:
+  void readRequest();
+  void onRead(boost::beast::error_code ec, std::size_t bytes);
+  void send(Response&& response, bool closeAfter);
+  void onWrite(bool closeAfter, boost::beast::error_code ec, std::size_t bytes);
+  // Half-closes, then reads and discards what the client still sends before closing: closing with
+  // unread input would reset the connection and could destroy the error reply in flight.
+  void drainThenClose();
+  void onDrain(boost::beast::error_code ec, std::size_t bytes);
+
+  boost::beast::tcp_stream stream_;
+  boost::beast::flat_buffer buffer_;
+  std::shared_ptr<const Router> router_;
+  HttpLimits limits_;
+  std::optional<http::request_parser<http::string_body>> parser_;  // a fresh one per request
+  Response response_;  // kept alive until its write completes
+  std::size_t drained_ = 0;
+};
+
+}  // namespace orthosim::net

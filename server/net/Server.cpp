@@ -1,0 +1,71 @@
+#include "net/Server.hpp"
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <algorithm>
+#include <csignal>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "cases/CaseCatalog.hpp"
+#include "net/Listener.hpp"
+#include "net/Router.hpp"
+
+namespace orthosim::net {
+using boost::asio::ip::tcp;
+
+struct Server::Impl {
+  ServerOptions options;
+  boost::asio::io_context io;
+  boost::asio::signal_set signals{io, SIGINT, SIGTERM};
+  std::shared_ptr<Listener> listener;
+  int stopSignal = 0;
+
+  explicit Impl(const ServerOptions& o) : options(o), io(std::max(1, o.networkThreads)) {}
+};
+
+namespace {
+
+tcp::endpoint resolveEndpoint(boost::asio::io_context& io, const std::string& host, unsigned short port) {
+  boost::system::error_code ec;
+  tcp::resolver resolver(io);
+  // Numeric addresses and names such as "localhost"; the first result is used.
+  const auto results = resolver.resolve(host, std::to_string(port), tcp::resolver::passive, ec);
+  if (ec || results.empty()) throw std::runtime_error("cannot resolve host '" + host + "': " + ec.message());
+  return results.begin()->endpoint();
+}
+
+}  // namespace
+
+Server::Server(const ServerOptions& options) : impl_(std::make_unique<Impl>(options)) {
+  auto router = std::make_shared<const Router>(WebRoot(options.webDir), ApiRoutes(server::builtInCases()));
+  impl_->listener = std::make_shared<Listener>(impl_->io, resolveEndpoint(impl_->io, options.host, options.port),
+                                               std::move(router), options.limits);
+  impl_->listener->start();
+  impl_->signals.async_wait([impl = impl_.get()](const boost::system::error_code& ec, int signal) {
+    if (ec) return;
+    impl->stopSignal = signal;
+    impl->io.stop();  // abandons open connections; their sessions are destroyed with the io_context
+  });
+}
+
+Server::~Server() = default;
+
+std::string Server::host() const {
+  const auto address = impl_->listener->endpoint().address();
+  return address.is_v6() ? "[" + address.to_string() + "]" : address.to_string();
+}
+
+unsigned short Server::port() const { return impl_->listener->endpoint().port(); }
+
+int Server::runUntilSignal() {
+  std::vector<std::thread> threads;
+  for (int i = 1; i < impl_->options.networkThreads; ++i) threads.emplace_back([this] { impl_->io.run(); });
+  impl_->io.run();  // the calling thread is the first network thread
+  for (std::thread& t : threads) t.join();
+  return impl_->stopSignal;
+}
+
+}  // namespace orthosim::net
