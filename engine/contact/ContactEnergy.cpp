@@ -9,15 +9,11 @@ namespace orthosim {
 
 ContactEnergy::ContactEnergy(std::vector<ContactPair> pairs) : pairs_(std::move(pairs)), memo_(pairs_.size()) {
   for (size_t k = 0; k < pairs_.size(); ++k) {
-    memo_[k].at.assign(pairs_[k].nodes.size(), Eigen::Vector3d::Zero());
-    memo_[k].clearance.assign(pairs_[k].nodes.size(), 0.0);
-    memo_[k].hits.resize(pairs_[k].nodes.size());
-    memo_[k].hit.resize(pairs_[k].nodes.size());
-  }
-  for (size_t k = 0; k < pairs_.size(); ++k) {
     if (!pairs_[k].surface) throw std::invalid_argument("contact pair " + std::to_string(k) + " has no surface");
     if (!(pairs_[k].stiffness > 0) || !std::isfinite(pairs_[k].stiffness))
       throw std::invalid_argument("contact pair " + std::to_string(k) + ": stiffness must be a positive number of N/mm");
+    memo_[k].at.assign(pairs_[k].nodes.size(), Eigen::Vector3d::Zero());
+    memo_[k].clearance.assign(pairs_[k].nodes.size(), 0.0);
   }
 }
 
@@ -28,23 +24,15 @@ std::vector<ActiveContact> ContactEnergy::active(const Eigen::Matrix3Xd& x, cons
     Memo& memo = memo_[p];
     const RigidPose pose = pair.fragment >= 0 ? poses.at(pair.fragment) : RigidPose::identity();
     const int n = static_cast<int>(pair.nodes.size());
-    std::vector<char>& hit = memo.hit;
-    std::vector<SurfacePoint>& hits = memo.hits;
-    long long asked = 0;
     for (int k = 0; k < n; ++k) {
-      hit[k] = 0;
       const Eigen::Vector3d local = pose.R.transpose() * (x.col(pair.nodes[k]) - pose.b);
       if ((local - memo.at[k]).norm() < memo.clearance[k]) continue;  // still outside
-      hits[k] = pair.surface->query(local);
-      ++asked;
+      const SurfacePoint hit = pair.surface->query(local);
+      ++queries_;
       memo.at[k] = local;
-      memo.clearance[k] = std::max(0.0, hits[k].distance);
-      hit[k] = hits[k].distance < 0;
+      memo.clearance[k] = std::max(0.0, hit.distance);
+      if (hit.distance < 0) out.push_back({pair.nodes[k], hit.distance, pose.R * hit.normal, pair.stiffness});
     }
-    queries_ += asked;
-    skipped_ += n - asked;
-    for (int k = 0; k < n; ++k)
-      if (hit[k]) out.push_back({pair.nodes[k], hits[k].distance, pose.R * hits[k].normal, pair.stiffness});
   }
   return out;
 }

@@ -41,9 +41,7 @@ class ContactEnergy {
   void addGradient(const std::vector<ActiveContact>& contacts, Eigen::Matrix3Xd& g) const;
   static Eigen::Matrix3d hessianBlock(const ActiveContact& c) { return c.stiffness * c.normal * c.normal.transpose(); }
 
-  const std::vector<ContactPair>& pairs() const { return pairs_; }
-  long long queries() const { return queries_; }    // distance queries made
-  long long skipped() const { return skipped_; }    // node tests answered without a query
+  long long queries() const { return queries_; }  // distance queries made
 
  private:
   // Per pair and node: where it was last queried (rest frame of the surface) and how far outside
@@ -52,12 +50,10 @@ class ContactEnergy {
   struct Memo {
     std::vector<Eigen::Vector3d> at;
     std::vector<double> clearance;  // distance outside at `at`; 0: query again
-    std::vector<SurfacePoint> hits;  // this evaluation's answers (reused storage)
-    std::vector<char> hit;
   };
   std::vector<ContactPair> pairs_;
   mutable std::vector<Memo> memo_;
-  mutable long long queries_ = 0, skipped_ = 0;
+  mutable long long queries_ = 0;
 };
 
 }  // namespace orthosim

@@ -34,7 +34,6 @@ struct RigidSurface::Impl {
   std::map<std::pair<int, int>, int> edgeUse;                 // 1: a border edge (open surface)
   std::vector<char> borderVertex;
   Tree tree;
-  Eigen::AlignedBox3d box;
 
   // The pseudo-normal of the feature of triangle t that q lies on; `border` tells whether that
   // feature is on the rim of an open surface (a crop or a cut), where no side is defined.
@@ -85,7 +84,6 @@ RigidSurface::RigidSurface(const SurfaceMesh& s) : impl_(std::make_unique<Impl>(
       auto [it, added] = m.edgeNormal.try_emplace(std::minmax(c[k], c[(k + 1) % 3]), Eigen::Vector3d::Zero());
       it->second += m.faceNormal.back();
       ++m.edgeUse[std::minmax(c[k], c[(k + 1) % 3])];
-      m.box.extend(p[k]);
     }
   }
   if (m.triangles.empty()) throw std::invalid_argument("rigid surface: no triangle of positive area");
@@ -120,8 +118,5 @@ SurfacePoint RigidSurface::query(const Eigen::Vector3d& p) const {
   out.normal = len > 1e-12 ? Eigen::Vector3d(sign * d / len) : pseudo;
   return out;
 }
-
-const Eigen::AlignedBox3d& RigidSurface::bounds() const { return impl_->box; }
-int RigidSurface::numTriangles() const { return static_cast<int>(impl_->triangles.size()); }
 
 }  // namespace orthosim

@@ -8,7 +8,6 @@
 // Moving the fragment costs nothing: callers bring points into the rest frame. In orthosim_cgal;
 // no CGAL type here.
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <memory>
 
 #include "mesh/SurfaceMesh.hpp"
@@ -31,8 +30,6 @@ class RigidSurface {
   RigidSurface& operator=(RigidSurface&&) noexcept;
 
   SurfacePoint query(const Eigen::Vector3d& p) const;  // thread-safe
-  const Eigen::AlignedBox3d& bounds() const;
-  int numTriangles() const;
 
  private:
   struct Impl;

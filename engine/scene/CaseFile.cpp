@@ -249,9 +249,11 @@ CaseSpec loadCaseFile(const std::string& path) {
       if (contact.bones.empty()) r.fail("must list at least one bone", "bones");
       contact.rangeMm = r.number("range_mm", contact.rangeMm);
       if (!(contact.rangeMm > 0 && contact.rangeMm <= 100)) r.fail("must lie in (0, 100] mm", "range_mm");
-      contact.stiffness = r.number("stiffness_n_per_mm", contact.stiffness);
-      if (!(contact.stiffness > 0) || !std::isfinite(contact.stiffness))
-        if (r.has("stiffness_n_per_mm")) r.fail("must be a positive number of N/mm", "stiffness_n_per_mm");
+      if (r.has("stiffness_n_per_mm")) {
+        contact.stiffness = r.number("stiffness_n_per_mm");
+        if (!(contact.stiffness > 0 && std::isfinite(contact.stiffness)))
+          r.fail("must be a positive number of N/mm", "stiffness_n_per_mm");
+      }
       r.rejectUnknown();
       c.contacts.push_back(contact);
     });

@@ -31,6 +31,7 @@ std::vector<ContactSpec> caseContacts(const CaseSpec& spec, const CaseTissue& ti
                                       const std::vector<BoneGroup>& groups) {
   std::vector<ContactSpec> out;
   if (spec.contacts.empty()) return out;
+  // Nodes that may touch: on the boundary, off the skin, not held by bone or a fixed set.
   std::vector<char> held(scene.mesh.numNodes(), 0), skin(scene.mesh.numNodes(), 0), boundary(scene.mesh.numNodes(), 0);
   for (int n : tissue.skinNodes) skin[n] = 1;
   for (const FragmentSpec& f : scene.fragments)
@@ -46,6 +47,7 @@ std::vector<ContactSpec> caseContacts(const CaseSpec& spec, const CaseTissue& ti
     if (boundary[n] && !held[n] && !skin[n]) candidates.push_back(n);
   Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(candidates.size()));
   for (size_t k = 0; k < candidates.size(); ++k) points.col(static_cast<Eigen::Index>(k)) = scene.mesh.rest.col(candidates[k]);
+  if (candidates.empty()) return out;
 
   for (size_t c = 0; c < spec.contacts.size(); ++c)
     for (const std::string& boneName : spec.contacts[c].bones) {
@@ -65,7 +67,6 @@ std::vector<ContactSpec> caseContacts(const CaseSpec& spec, const CaseTissue& ti
         contact.name = boneName + " (" + contact.fragment + ")";
         contact.surface = trianglesOf(bone, fragmentOf, f);
         contact.stiffness = spec.contacts[c].stiffness;
-        if (candidates.empty()) continue;
         const Eigen::VectorXd d = distancesToSurface(contact.surface.vertices, contact.surface.triangles, points);
         for (size_t k = 0; k < candidates.size(); ++k)
           if (d[static_cast<Eigen::Index>(k)] <= spec.contacts[c].rangeMm) contact.nodes.push_back(candidates[k]);

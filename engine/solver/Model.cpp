@@ -103,12 +103,6 @@ Eigen::Matrix3Xd Model::totalGradient(const SimState& s) const {
   return g;
 }
 
-Eigen::Matrix3Xd Model::contactGradient(const SimState& s) const {
-  Eigen::Matrix3Xd g = Eigen::Matrix3Xd::Zero(3, s.x.cols());
-  if (contact_) contact_->addGradient(activeContacts(s), g);
-  return g;
-}
-
 void Model::assemble(const SimState& s, const Eigen::Matrix3Xd& g, bool projectToPSD) {
   system_->assemble(s, g, projectToPSD);
   for (const ActiveContact& c : activeContacts(s)) system_->addNodeBlock(c.node, ContactEnergy::hessianBlock(c));

@@ -46,7 +46,6 @@ class Model {
   // Soft tissue plus contact (when the scene has contact pairs): what Newton minimises.
   double totalEnergy(const SimState& s) const;
   Eigen::Matrix3Xd totalGradient(const SimState& s) const;
-  Eigen::Matrix3Xd contactGradient(const SimState& s) const;  // zero without contact
   // The reduced Hessian of the total energy at s into system().matrix().
   void assemble(const SimState& s, const Eigen::Matrix3Xd& g, bool projectToPSD);
   const ContactEnergy* contact() const { return contact_.get(); }

@@ -6,21 +6,13 @@
 #include <random>
 
 #include "contact/ContactEnergy.hpp"
+#include "Square.hpp"
 #include "mesh/SurfacePrimitives.hpp"
 
 namespace orthosim {
 namespace {
 
-// A square in the plane z = h, outward normal `up` (+z) or down (-z), half side `half`.
-SurfaceMesh square(double h, double half, bool up) {
-  SurfaceMesh s;
-  s.vertices.resize(3, 4);
-  s.vertices << -half, half, half, -half, -half, -half, half, half, h, h, h, h;
-  s.triangles.resize(3, 2);
-  if (up) s.triangles << 0, 0, 1, 2, 2, 3;
-  else s.triangles << 0, 0, 2, 3, 1, 2;
-  return s;
-}
+using test::square;
 
 TEST(RigidSurface, SignedDistanceAndNormalOfASphere) {
   const RigidSurface sphere(makeIcosphere(10, 5));

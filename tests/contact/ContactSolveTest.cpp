@@ -6,21 +6,14 @@
 #include <cmath>
 
 #include "mesh/BoxMesh.hpp"
+#include "Square.hpp"
 #include "mesh/SurfacePrimitives.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim {
 namespace {
 
-SurfaceMesh square(double h, double half, bool up) {
-  SurfaceMesh s;
-  s.vertices.resize(3, 4);
-  s.vertices << -half, half, half, -half, -half, -half, half, half, h, h, h, h;
-  s.triangles.resize(3, 2);
-  if (up) s.triangles << 0, 0, 1, 2, 2, 3;
-  else s.triangles << 0, 0, 2, 3, 1, 2;
-  return s;
-}
+using test::square;
 
 // Nominal stress of the compressible Neo-Hookean in uniaxial stress at stretch l1 (lateral faces
 // free): P22 = 0 solved for the lateral stretch, then P11.
