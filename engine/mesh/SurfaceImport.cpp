@@ -174,7 +174,9 @@ SurfaceMesh importSurface(const std::string& path) {
   return out;
 }
 
-void exportSurface(const SurfaceMesh& mesh, const std::string& path, SurfaceEncoding encoding) {
+namespace {
+
+void exportWith(const SurfaceMesh& mesh, const Eigen::Matrix3Xf* colours, const std::string& path, SurfaceEncoding encoding) {
   const Format format = formatOf(path);
   const bool binary = encoding == SurfaceEncoding::Binary;
   const char* id = format == Format::Stl ? (binary ? "stlb" : "stl")
@@ -189,6 +191,10 @@ void exportSurface(const SurfaceMesh& mesh, const std::string& path, SurfaceEnco
       if (mesh.triangles(k, t) < 0 || mesh.triangles(k, t) >= mesh.numVertices())
         throw std::runtime_error(path + ": cannot export: triangle " + std::to_string(t) + " refers to vertex " +
                                  std::to_string(mesh.triangles(k, t)) + " of " + std::to_string(mesh.numVertices()));
+  if (colours && format == Format::Stl) throw std::runtime_error(path + ": cannot export vertex colours to STL (use .ply or .obj)");
+  if (colours && colours->cols() != mesh.vertices.cols())
+    throw std::runtime_error(path + ": cannot export: " + std::to_string(colours->cols()) + " colours for " +
+                             std::to_string(mesh.numVertices()) + " vertices");
 
   auto scene = std::make_unique<aiScene>();  // owns everything below
   scene->mRootNode = new aiNode();
@@ -238,6 +244,13 @@ void exportSurface(const SurfaceMesh& mesh, const std::string& path, SurfaceEnco
       am.mNumUVComponents[0] = 2;
       for (unsigned v = 0; v < nv; ++v) am.mTextureCoords[0][v] = aiVector3D(ai_real(mesh.uv(0, v)), ai_real(mesh.uv(1, v)), 0);
     }
+    if (colours) {
+      am.mColors[0] = new aiColor4D[nv];
+      for (unsigned v = 0; v < nv; ++v) {
+        const Eigen::Vector3f c = colours->col(v).cwiseMax(0.0f).cwiseMin(1.0f);
+        am.mColors[0][v] = aiColor4D(c.x(), c.y(), c.z(), 1.0f);
+      }
+    }
     for (unsigned t = 0; t < nt; ++t) {
       am.mFaces[t].mNumIndices = 3;
       am.mFaces[t].mIndices = new unsigned[3];
@@ -248,6 +261,17 @@ void exportSurface(const SurfaceMesh& mesh, const std::string& path, SurfaceEnco
   Assimp::Exporter exporter;
   if (exporter.Export(scene.get(), id, path) != AI_SUCCESS)
     throw std::runtime_error(path + ": cannot write: " + exporter.GetErrorString());
+}
+
+}  // namespace
+
+void exportSurface(const SurfaceMesh& mesh, const std::string& path, SurfaceEncoding encoding) {
+  exportWith(mesh, nullptr, path, encoding);
+}
+
+void exportSurface(const SurfaceMesh& mesh, const Eigen::Matrix3Xf& vertexColours, const std::string& path,
+                   SurfaceEncoding encoding) {
+  exportWith(mesh, &vertexColours, path, encoding);
 }
 
 }  // namespace orthosim
