@@ -178,7 +178,9 @@ namespace {
 
 void exportWith(const SurfaceMesh& mesh, const Eigen::Matrix3Xf* colours, const std::string& path, SurfaceEncoding encoding) {
   const Format format = formatOf(path);
-  const bool binary = encoding == SurfaceEncoding::Binary;
+  // Assimp 5.2's binary PLY writer declares uchar colours but writes them as floats, a file no
+  // reader can parse: coloured PLY is written as ASCII.
+  const bool binary = encoding == SurfaceEncoding::Binary && !colours;
   const char* id = format == Format::Stl ? (binary ? "stlb" : "stl")
                    : format == Format::Ply ? (binary ? "plyb" : "ply")
                                            : "objnomtl";  // no .mtl beside it

@@ -25,7 +25,8 @@ enum class SurfaceEncoding { Binary, Ascii };  // OBJ is always ASCII
 void exportSurface(const SurfaceMesh& mesh, const std::string& path,
                    SurfaceEncoding encoding = SurfaceEncoding::Binary);
 // The same with RGB vertex colours in [0, 1], one column per vertex: PLY (uchar red, green, blue,
-// alpha) or OBJ ("v x y z r g b"); STL has no vertex colours and is refused.
+// alpha; always ASCII, as assimp 5.2's binary PLY writer garbles colours) or OBJ ("v x y z r g b");
+// STL has no vertex colours and is refused.
 void exportSurface(const SurfaceMesh& mesh, const Eigen::Matrix3Xf& vertexColours, const std::string& path,
                    SurfaceEncoding encoding = SurfaceEncoding::Binary);
 
