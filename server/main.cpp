@@ -54,6 +54,16 @@ int main(int argc, char** argv) {
   serve->add_option("--host", serveOptions.host, "Address to bind (default 127.0.0.1: this machine only)");
   serve->add_option("--port", serveOptions.port, "TCP port; 0 picks a free one")->check(CLI::Range(0, 65535));
   serve->add_option("--web", serveOptions.webDir, "Folder of the browser page (default: the source tree's web/)");
+  serve->add_option("--data", serveOptions.dataDir,
+                    "Folder for built cases, the mesh cache and saved plans (default: $ORTHOSIM_DATA, else "
+                    "~/.local/share/orthosim)");
+  serve->add_option("--cases", serveOptions.casesDir, "Folder of case folders (DIR/<id>/case.json) to serve besides the phantom");
+  serve->add_option("--token", serveOptions.token, "Access token required on /api and /ws (default: $ORTHOSIM_TOKEN)");
+  serve->add_option("--allow-origin", serveOptions.allowedOrigins,
+                    "Origin (e.g. http://planning.example:8080) whose pages may open the WebSocket; '*' allows any");
+  serve->add_option("--allow-host", serveOptions.allowedHosts, "Host name clients may use besides localhost and the bound address");
+  serve->add_option("--fine-workers", serveOptions.fineWorkers, "Fine jobs run at once")->check(CLI::Range(1, 16));
+  serve->add_flag("!--no-warm-up", serveOptions.warmUp, "Do not build the phantom's coarse model at start");
 
   try {
     app.parse(argc, argv);
