@@ -1,6 +1,7 @@
 #include "net/WebSocketSession.hpp"
 
 #include <boost/asio/post.hpp>
+#include <iostream>
 
 namespace orthosim::net {
 namespace beast = boost::beast;
@@ -56,12 +57,17 @@ void WebSocketSession::onRead(beast::error_code ec, std::size_t bytes) {
   }
   buffer_.consume(buffer_.size());
   if (ws_.is_message_done()) {
-    if (discarding_)
-      planning_->refuseOversized(messageBytes_, limits_.messageBytes);
-    else if (ws_.got_binary())
-      planning_->refuseBinary();
-    else
-      planning_->handle(message_);
+    try {
+      if (discarding_)
+        planning_->refuseOversized(messageBytes_, limits_.messageBytes);
+      else if (ws_.got_binary())
+        planning_->refuseBinary();
+      else
+        planning_->handle(message_);
+    } catch (const std::exception& e) {
+      // handle() answers every bad message itself; this only keeps a bug off the network thread.
+      std::cerr << "orthosim serve: session " << planning_->id() << ": " << e.what() << "\n";
+    }
     message_.clear();
     messageBytes_ = 0;
     discarding_ = false;

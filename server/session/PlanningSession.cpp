@@ -138,7 +138,7 @@ void PlanningSession::handle(const std::string& text) {
   json message, id;
   try {
     message = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax errors, and numbers beyond double (1e999)
     return sendError("malformed_json", std::string("message is not valid JSON: ") + e.what(), "", nullptr);
   }
   try {
