@@ -54,6 +54,11 @@ void WsTestClient::sendBinary(const std::string& bytes) {
 }
 
 nlohmann::json WsTestClient::next(std::chrono::milliseconds timeout) {
+  if (!pending_.empty()) {
+    nlohmann::json m = std::move(pending_.front());
+    pending_.pop_front();
+    return m;
+  }
   beast::flat_buffer buffer;
   bool done = false;
   beast::error_code ec;
@@ -98,7 +103,16 @@ nlohmann::json WsTestClient::request(nlohmann::json message, std::chrono::millis
   const int id = nextId_++;
   message["id"] = id;
   send(message);
-  return waitFor([id](const nlohmann::json& m) { return m.contains("id") && m["id"] == id; }, timeout);
+  std::deque<nlohmann::json> before;
+  nlohmann::json reply = waitFor(
+      [&](const nlohmann::json& m) {
+        if (m.contains("id") && m["id"] == id) return true;
+        before.push_back(m);
+        return false;
+      },
+      timeout);
+  pending_.insert(pending_.end(), before.begin(), before.end());
+  return reply;
 }
 
 void WsTestClient::close() {

@@ -5,6 +5,7 @@
 #include <boost/beast/core.hpp>
 #include <boost/beast/websocket.hpp>
 #include <chrono>
+#include <deque>
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -31,7 +32,8 @@ class WsTestClient {
   nlohmann::json waitFor(const std::string& type, std::chrono::milliseconds timeout = std::chrono::seconds(60));
   nlohmann::json waitFor(const std::function<bool(const nlohmann::json&)>& match,
                          std::chrono::milliseconds timeout = std::chrono::seconds(60));
-  // Sends and waits for the reply carrying the same "id" (a fresh one is added).
+  // Sends and waits for the reply carrying the same "id" (a fresh one is added). Messages that
+  // come before it are kept for the next calls of next() and waitFor().
   nlohmann::json request(nlohmann::json message, std::chrono::milliseconds timeout = std::chrono::seconds(60));
   void close();
 
@@ -43,6 +45,7 @@ class WsTestClient {
   boost::beast::websocket::stream<boost::beast::tcp_stream> ws_;
   nlohmann::json welcome_;
   std::vector<nlohmann::json> received_;
+  std::deque<nlohmann::json> pending_;  // read while waiting for a reply, not yet handed out
   int nextId_ = 1;
 };
 
