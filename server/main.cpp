@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
                     "Origin (e.g. http://planning.example:8080) whose pages may open the WebSocket; '*' allows any");
   serve->add_option("--allow-host", serveOptions.allowedHosts, "Host name clients may use besides localhost and the bound address");
   serve->add_option("--fine-workers", serveOptions.fineWorkers, "Fine jobs run at once")->check(CLI::Range(1, 16));
+  serve->add_option("--max-sessions", serveOptions.maxSessions, "Planning sessions open at once")->check(CLI::Range(1, 1024));
   serve->add_flag("!--no-warm-up", serveOptions.warmUp, "Do not build the phantom's coarse model at start");
 
   try {

@@ -48,6 +48,7 @@ struct ServeOptions {
   std::vector<std::string> allowedOrigins, allowedHosts;
   bool warmUp = true;    // build the phantom's coarse model at start
   int fineWorkers = 1;
+  int maxSessions = 32;
 };
 // Serves HTTP (and later the WebSocket API) until SIGINT or SIGTERM; 0 on a clean stop, 1 when
 // the server cannot start (bad host, port taken, no web folder).

@@ -42,6 +42,7 @@ net::ServerOptions serverOptions(const ServeOptions& options) {
     for (const std::string& s : skipped) std::cerr << "orthosim serve: skipped " << s << "\n";
   }
   server.planning.fineWorkers = options.fineWorkers;
+  server.planning.maxSessions = options.maxSessions;
   if (options.warmUp) server.warmUpCase = "phantom-0";
   return server;
 }

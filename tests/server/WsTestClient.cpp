@@ -2,11 +2,13 @@
 
 #include <boost/asio/connect.hpp>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/http.hpp>
 #include <stdexcept>
 
 namespace orthosim::test {
 namespace beast = boost::beast;
 namespace websocket = beast::websocket;
+namespace http = beast::http;
 using boost::asio::ip::tcp;
 
 namespace {
@@ -121,12 +123,25 @@ void WsTestClient::close() {
 }
 
 int upgradeStatus(unsigned short port, const std::string& target, const Headers& headers) {
+  // By hand rather than through websocket::stream::handshake, which does not report the status
+  // of a refused upgrade.
   boost::asio::io_context io;
-  websocket::stream<beast::tcp_stream> ws(io);
-  websocket::response_type response;
-  beast::error_code ec;
-  handshake(ws, io, port, target, headers, response, ec);
-  return response.result_int();
+  beast::tcp_stream stream(io);
+  stream.connect(tcp::endpoint(boost::asio::ip::make_address("127.0.0.1"), port));
+  http::request<http::empty_body> req{http::verb::get, target, 11};
+  req.set(http::field::host, "127.0.0.1:" + std::to_string(port));
+  req.set(http::field::upgrade, "websocket");
+  req.set(http::field::connection, "Upgrade");
+  req.set(http::field::sec_websocket_key, "dGhlIHNhbXBsZSBub25jZQ==");
+  req.set(http::field::sec_websocket_version, "13");
+  for (const auto& [k, v] : headers) req.set(k, v);
+  http::write(stream, req);
+  beast::flat_buffer buffer;
+  http::response_parser<http::empty_body> parser;
+  parser.skip(true);  // headers only: a 101 reply has no body, a refusal's is not needed
+  stream.expires_after(std::chrono::seconds(10));
+  http::read_header(stream, buffer, parser);
+  return parser.get().result_int();
 }
 
 }  // namespace orthosim::test
