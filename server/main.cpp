@@ -40,6 +40,13 @@ int main(int argc, char** argv) {
                        "With --phantom or --case: a JSON file {fragment: {translation_mm, rotation_deg, center_mm}} "
                        "solved instead of the case's plan")->check(CLI::ExistingFile);
   benchCmd->add_option("--variant", caseBench.phantomVariant, "Phantom variant for --phantom")->check(CLI::Range(0, 100));
+  bool benchLatency = false;
+  orthosim::cli::LatencyBenchOptions latency;
+  latency.webDir = ORTHOSIM_WEB_DIR;
+  benchCmd->add_flag("--latency", benchLatency,
+                     "Time coarse previews through the planning server (WebSocket round trips on the phantom)");
+  benchCmd->add_option("--changes", latency.changes, "Pose changes for --latency")->check(CLI::Range(1, 10000));
+  benchCmd->add_option("--data", latency.dataDir, "Data folder for --latency (phantom and mesh cache, reused)");
 
   int phantomVariant = 0;
   std::string phantomOut = "phantom";
@@ -79,6 +86,11 @@ int main(int argc, char** argv) {
       return orthosim::cli::runSolve(scene, out, solveOptions);
     }
     if (*demo) return orthosim::cli::runDemo(demoOut);
+    if (*benchCmd && benchLatency) {
+      latency.phantomVariant = caseBench.phantomVariant;
+      latency.jsonPath = bench.jsonPath;
+      return orthosim::cli::runLatencyBench(latency);
+    }
     if (*benchCmd && (benchPhantom || !caseBench.casePath.empty())) {
       caseBench.repeats = bench.repeats == 5 ? 3 : bench.repeats;
       caseBench.jsonPath = bench.jsonPath;

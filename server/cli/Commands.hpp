@@ -35,6 +35,16 @@ struct CaseBenchOptions {
 };
 int runCaseBench(const CaseBenchOptions& options);
 
+struct LatencyBenchOptions {
+  int changes = 50;
+  int phantomVariant = 0;
+  std::string dataDir = "orthosim-bench-data";  // built phantom and mesh cache (reused between runs)
+  std::string webDir;
+  std::string jsonPath;
+};
+// Round-trip latency of coarse previews through the planning server (bench --latency).
+int runLatencyBench(const LatencyBenchOptions& options);
+
 // Writes the built-in phantom head (variant N) as a surface-based case under outDir.
 int runPhantom(int variant, const std::string& outDir);
 

@@ -2,6 +2,7 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/post.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <algorithm>
 #include <csignal>
@@ -69,6 +70,10 @@ std::string Server::host() const {
 }
 
 unsigned short Server::port() const { return impl_->listener->endpoint().port(); }
+
+void Server::stop() {
+  boost::asio::post(impl_->io, [impl = impl_.get()] { impl->io.stop(); });
+}
 
 int Server::runUntilSignal() {
   std::vector<std::thread> threads;

@@ -39,6 +39,8 @@ class Server {
   // Serves until SIGINT or SIGTERM; returns the signal number once every network thread has
   // stopped. Connections still open are closed when the Server is destroyed.
   int runUntilSignal();
+  // Makes runUntilSignal return (0) from another thread, as a signal would.
+  void stop();
 
  private:
   struct Impl;

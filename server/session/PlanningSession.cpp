@@ -263,7 +263,8 @@ json PlanningSession::caseJson(const OpenCase& c) const {
           {"coarse",
            {{"nodes", m.scene.mesh.numNodes()},
             {"tetrahedra", m.scene.mesh.numTets()},
-            {"skin_triangles", m.tissue.skin.numTriangles()}}}};
+            {"boundary_triangles", m.tissue.quality.boundaryFaces},
+            {"display_skin_triangles", m.tissue.skin.numTriangles()}}}};
 }
 
 std::shared_ptr<PlanningSession::OpenCase> PlanningSession::requireOpen() const {
