@@ -368,8 +368,17 @@ void PlanningSession::schedulePreview(const json& id) {
     seq = ++previewSeq_;
   }
   auto self = shared_from_this();
-  work_.submit([self, c, seq, poses, id](const std::atomic<bool>& cancel) { self->runPreview(c, seq, poses, id, cancel); },
-               true);
+  work_.submit(
+      [self, c, seq, poses, id](const std::atomic<bool>& cancel) {
+        try {
+          self->runPreview(c, seq, poses, id, cancel);
+        } catch (const std::exception& e) {  // the last good preview stays as it was
+          self->reply({{"type", "preview_failed"}, {"preview", seq}, {"case", c->id},
+                       {"message", std::string("the coarse solve failed: ") + e.what() + "; the last good preview is kept"}},
+                      id);
+        }
+      },
+      true);
 }
 
 void PlanningSession::runPreview(const std::shared_ptr<OpenCase>& c, long long seq, Poses poses, const json& id,

@@ -97,6 +97,23 @@ TEST(PlanningJobs, SigtermDuringAJobStopsCleanlyAndKeepsSavedPlans) {
     EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "no temporary file left: " << e.path();
 }
 
+TEST(PlanningJobs, TheServerAnswersWhileSolving) {
+  test::ServerProcess server;
+  test::WsTestClient busy(server.port()), other(server.port());
+  openPhantom(busy);
+  openPhantom(other);
+  busy.request({{"type", "confirm"}});
+  busy.waitFor("job_progress");
+  busy.send({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 6}}}}}});  // a preview too
+  // Solves run on worker threads: the network threads answer at once meanwhile.
+  for (int i = 0; i < 5; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    EXPECT_EQ(health(server)["status"], "ok");
+    EXPECT_EQ(other.request({{"type", "describe"}})["type"], "case");
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, 300ms);
+  }
+}
+
 TEST(PlanningJobs, TheQueueIsBounded) {
   test::ServerProcess server;
   test::WsTestClient ws(server.port());
