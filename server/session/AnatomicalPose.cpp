@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <sstream>
 
 namespace orthosim::server {
 namespace {
@@ -28,6 +29,25 @@ FragmentMotion motionFromPose(const AnatomicalPose& p, const AnatomicalFrame& f,
   m.rotation = vectorFromRotation(R);
   m.center = pivot;
   return m;
+}
+
+std::vector<std::string> unusualPoseWarnings(const std::string& fragment, const AnatomicalPose& p) {
+  constexpr double kUsualMm = 10, kUsualDeg = 10;
+  std::vector<std::string> out;
+  auto check = [&](double v, double usual, const char* plus, const char* minus, const char* unit) {
+    if (std::abs(v) <= usual) return;
+    std::ostringstream s;
+    s << fragment << ": " << std::abs(v) << " " << unit << " " << (v > 0 ? plus : minus) << " is beyond the usual "
+      << usual << " " << unit;
+    out.push_back(s.str());
+  };
+  check(p.anteriorMm, kUsualMm, "advancement", "setback", "mm");
+  check(p.superiorMm, kUsualMm, "impaction", "downgraft", "mm");
+  check(p.rightMm, kUsualMm, "shift to the right", "shift to the left", "mm");
+  check(p.pitchDeg, kUsualDeg, "pitch (front up)", "pitch (front down)", "degrees");
+  check(p.rollDeg, kUsualDeg, "roll (right side up)", "roll (right side down)", "degrees");
+  check(p.yawDeg, kUsualDeg, "yaw (front to the right)", "yaw (front to the left)", "degrees");
+  return out;
 }
 
 nlohmann::json poseToJson(const AnatomicalPose& p) {

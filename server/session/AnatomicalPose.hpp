@@ -3,6 +3,8 @@
 // turns about them (degrees) around the fragment's pivot. Converted to the plan's rigid motion
 // x = c + t + R (X - c) (scene/Scene.hpp FragmentMotion) in the case's frame.
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "scene/Osteotomy.hpp"
 #include "scene/Scene.hpp"
@@ -27,6 +29,10 @@ struct PoseLimits {
   double translationMm = 30;
   double rotationDeg = 30;
 };
+
+// Moves the server accepts but clinicians rarely plan (over 10 mm or 10 degrees, clinical primer):
+// one sentence each, naming the fragment, for the client to show.
+std::vector<std::string> unusualPoseWarnings(const std::string& fragment, const AnatomicalPose& pose);
 
 // x = c + t + R (X - c) with c = pivot, t the moves, R = R_yaw R_pitch R_roll.
 FragmentMotion motionFromPose(const AnatomicalPose& pose, const AnatomicalFrame& frame, const Eigen::Vector3d& pivot);

@@ -322,12 +322,15 @@ void PlanningSession::setPoses(MessageReader& r, const json& id) {
   const bool previewAfter = r.boolean("preview", true);
   r.rejectUnknown();
   json poses;
+  std::vector<std::string> warnings;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     for (const auto& [name, pose] : changed) poses_[name] = pose;
     poses = posesJson();
+    for (const auto& [name, pose] : poses_)
+      for (std::string& w : unusualPoseWarnings(name, pose)) warnings.push_back(std::move(w));
   }
-  reply({{"type", "poses"}, {"poses", std::move(poses)}}, id);
+  reply({{"type", "poses"}, {"poses", std::move(poses)}, {"warnings", warnings}}, id);
   if (previewAfter) schedulePreview(id);
 }
 

@@ -110,7 +110,7 @@ TEST(PlanningJobs, TheServerAnswersWhileSolving) {
     const auto t0 = std::chrono::steady_clock::now();
     EXPECT_EQ(health(server)["status"], "ok");
     EXPECT_EQ(other.request({{"type", "describe"}})["type"], "case");
-    EXPECT_LT(std::chrono::steady_clock::now() - t0, 300ms);
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, 1000ms) << "a blocked network thread would wait for a whole solve";
   }
 }
 

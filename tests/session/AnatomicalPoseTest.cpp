@@ -85,6 +85,19 @@ TEST(AnatomicalPose, ReadingChecksRangeAndFields) {
   EXPECT_THROW(readPose(MessageReader(nlohmann::json{{"roll_deg", true}}, "/p"), limits), ProtocolError);
 }
 
+TEST(AnatomicalPose, UnusualMovesAreWarnedAbout) {
+  AnatomicalPose p;
+  p.anteriorMm = 9;
+  p.pitchDeg = 5;
+  EXPECT_TRUE(unusualPoseWarnings("maxilla", p).empty());
+  p.anteriorMm = -12;
+  p.yawDeg = 11;
+  const std::vector<std::string> w = unusualPoseWarnings("mandible", p);
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_EQ(w[0], "mandible: 12 mm setback is beyond the usual 10 mm");
+  EXPECT_NE(w[1].find("yaw (front to the right)"), std::string::npos);
+}
+
 TEST(Identifier, OnlySafeNames) {
   for (const char* ok : {"a", "plan-1", "Case_07", "0abc"}) EXPECT_TRUE(isIdentifier(ok)) << ok;
   for (const char* bad : {"", "-a", "_a", "a.b", "a/b", "..", "a b", "é"}) EXPECT_FALSE(isIdentifier(bad)) << bad;
