@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -176,14 +177,19 @@ SurfaceMesh importSurface(const std::string& path) {
 
 namespace {
 
-void exportWith(const SurfaceMesh& mesh, const Eigen::Matrix3Xf* colours, const std::string& path, SurfaceEncoding encoding) {
-  const Format format = formatOf(path);
-  // Assimp 5.2's binary PLY writer declares uchar colours but writes them as floats, a file no
-  // reader can parse: coloured PLY is written as ASCII.
-  const bool binary = encoding == SurfaceEncoding::Binary && !colours;
-  const char* id = format == Format::Stl ? (binary ? "stlb" : "stl")
-                   : format == Format::Ply ? (binary ? "plyb" : "ply")
-                                           : "objnomtl";  // no .mtl beside it
+// Assimp 5.2's binary PLY writer declares uchar colours but writes them as floats, a file no reader
+// can parse: coloured PLY is written as ASCII.
+const char* exporterId(Format format, SurfaceEncoding encoding, bool coloured = false) {
+  const bool binary = encoding == SurfaceEncoding::Binary && !coloured;
+  return format == Format::Stl   ? (binary ? "stlb" : "stl")
+         : format == Format::Ply ? (binary ? "plyb" : "ply")
+                                 : "objnomtl";  // no .mtl beside it
+}
+
+// The mesh as an assimp scene for `format`, with RGB vertex colours when `colours` is given; `path`
+// names the target in errors.
+std::unique_ptr<aiScene> exportScene(const SurfaceMesh& mesh, Format format, const std::string& path,
+                                     const Eigen::Matrix3Xf* colours = nullptr) {
   if (mesh.numTriangles() == 0) throw std::runtime_error(path + ": cannot export: no triangles");
   if (mesh.hasUv() && mesh.uv.cols() != mesh.vertices.cols())
     throw std::runtime_error(path + ": cannot export: " + std::to_string(mesh.uv.cols()) +
@@ -260,20 +266,36 @@ void exportWith(const SurfaceMesh& mesh, const Eigen::Matrix3Xf* colours, const 
     }
   }
 
-  Assimp::Exporter exporter;
-  if (exporter.Export(scene.get(), id, path) != AI_SUCCESS)
-    throw std::runtime_error(path + ": cannot write: " + exporter.GetErrorString());
+  return scene;
 }
 
 }  // namespace
 
 void exportSurface(const SurfaceMesh& mesh, const std::string& path, SurfaceEncoding encoding) {
-  exportWith(mesh, nullptr, path, encoding);
+  const Format format = formatOf(path);
+  const std::unique_ptr<aiScene> scene = exportScene(mesh, format, path);
+  Assimp::Exporter exporter;
+  if (exporter.Export(scene.get(), exporterId(format, encoding), path) != AI_SUCCESS)
+    throw std::runtime_error(path + ": cannot write: " + exporter.GetErrorString());
 }
 
 void exportSurface(const SurfaceMesh& mesh, const Eigen::Matrix3Xf& vertexColours, const std::string& path,
                    SurfaceEncoding encoding) {
-  exportWith(mesh, &vertexColours, path, encoding);
+  const Format format = formatOf(path);
+  const std::unique_ptr<aiScene> scene = exportScene(mesh, format, path, &vertexColours);
+  Assimp::Exporter exporter;
+  if (exporter.Export(scene.get(), exporterId(format, encoding, true), path) != AI_SUCCESS)
+    throw std::runtime_error(path + ": cannot write: " + exporter.GetErrorString());
+}
+
+std::string exportSurfaceBytes(const SurfaceMesh& mesh, const std::string& extension, SurfaceEncoding encoding) {
+  const std::string name = "surface." + extension;
+  const Format format = formatOf(name);
+  const std::unique_ptr<aiScene> scene = exportScene(mesh, format, name);
+  Assimp::Exporter exporter;
+  const aiExportDataBlob* blob = exporter.ExportToBlob(scene.get(), exporterId(format, encoding));
+  if (!blob) throw std::runtime_error(name + ": cannot export: " + exporter.GetErrorString());
+  return std::string(static_cast<const char*>(blob->data), blob->size);
 }
 
 }  // namespace orthosim
