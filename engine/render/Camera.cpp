@@ -65,6 +65,11 @@ ProjectedPoint Camera::project(const Eigen::Vector3d& p, int width, int height) 
   return out;
 }
 
+double Camera::eyeDepth(double depth) const {
+  const double n = nearPlane(), f = farPlane(), ndc = 2.0 * depth - 1.0;
+  return 2.0 * f * n / ((f + n) - ndc * (f - n));
+}
+
 double Camera::mmPerPixel(int height) const {
   return 2.0 * distance * std::tan(0.5 * radians(fieldOfViewDeg)) / height;
 }

@@ -36,6 +36,9 @@ struct Camera {
   Eigen::Matrix4d view() const;
   Eigen::Matrix4d projection(double aspect) const;  // aspect = width / height
   ProjectedPoint project(const Eigen::Vector3d& p, int width, int height) const;
+  // Distance in mm along the view direction of a point at window depth `depth` (inverts the
+  // projection's non-linear depth, so depth-buffer values compare in mm).
+  double eyeDepth(double depth) const;
   // mm at the target's distance that one pixel spans in an image `height` pixels high.
   double mmPerPixel(int height) const;
 
