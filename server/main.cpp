@@ -48,7 +48,6 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--frames", renderBench.frames, "With --render: frames per turn around the head")->check(CLI::Range(4, 3600));
   benchCmd->add_option("--width", renderBench.width, "With --render: image width")->check(CLI::Range(16, 8192));
   benchCmd->add_option("--height", renderBench.height, "With --render: image height")->check(CLI::Range(16, 8192));
-  benchCmd->add_option("--samples", renderBench.samples, "With --render: multisampling (0: none)")->check(CLI::Range(0, 16));
 
   int phantomVariant = 0;
   std::string phantomOut = "phantom";

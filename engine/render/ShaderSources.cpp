@@ -2,6 +2,9 @@
 
 namespace orthosim::render::shaders {
 
+// Lighting per vertex (Gouraud): a skin triangle covers a few pixels at most, so per-pixel lighting
+// would look the same and cost far more on a CPU rasteriser. Two lights fixed to the camera (key
+// above left, fill right) light every view alike; both sides are lit for open bone pieces.
 const char* const kSurfaceVertex = R"(#version 330 core
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
@@ -14,16 +17,23 @@ uniform mat4 uView;
 uniform mat4 uProjection;
 uniform int uAtRest;       // 1: the rest surface (before)
 uniform int uValueSource;  // 0 none, 1 displacement from rest, 2 aScalar
-out vec3 vPositionEye;
-out vec3 vNormalEye;
+uniform float uSpecular;
 out vec2 vUv;
 out float vValue;
+out vec2 vLight;           // diffuse + ambient factor of the front (x) and back (y) side
+out vec2 vHighlight;       // specular of the front and back side
 void main() {
   vec3 p = uAtRest == 1 ? aRestPosition : aPosition;
-  vec3 n = uAtRest == 1 ? aRestNormal : aNormal;
+  vec3 n0 = uAtRest == 1 ? aRestNormal : aNormal;
   vec4 eye = uView * uModel * vec4(p, 1.0);
-  vPositionEye = eye.xyz;
-  vNormalEye = mat3(uView * uModel) * n;  // rigid maps only: no inverse transpose needed
+  vec3 n = normalize(mat3(uView * uModel) * n0);  // rigid maps only: no inverse transpose needed
+  vec3 v = normalize(-eye.xyz);
+  vec3 key = normalize(vec3(-0.4, 0.5, 1.0));
+  vec3 fill = normalize(vec3(0.7, -0.1, 0.7));
+  vec3 halfway = normalize(key + v);
+  vLight = 0.2 + vec2(0.65 * max(dot(n, key), 0.0) + 0.25 * max(dot(n, fill), 0.0),
+                      0.65 * max(dot(-n, key), 0.0) + 0.25 * max(dot(-n, fill), 0.0));
+  vHighlight = uSpecular * vec2(pow(max(dot(n, halfway), 0.0), 24.0), pow(max(dot(-n, halfway), 0.0), 24.0));
   vUv = aUv;
   float displacement = uAtRest == 1 ? 0.0 : length(aPosition - aRestPosition);
   vValue = uValueSource == 1 ? displacement : aScalar;
@@ -31,23 +41,18 @@ void main() {
 }
 )";
 
-// Two lights fixed to the camera (key above left, fill right) so every view is lit alike.
 const char* const kSurfaceFragment = R"(#version 330 core
-in vec3 vPositionEye;
-in vec3 vNormalEye;
 in vec2 vUv;
 in float vValue;
+in vec2 vLight;
+in vec2 vHighlight;
 uniform int uColorSource;  // 0 flat uColor, 1 texture, 2 vValue through the ramp
 uniform vec4 uColor;       // flat colour; its alpha is the opacity for every source
 uniform sampler2D uTexture;
 uniform sampler2D uRamp;
 uniform vec2 uRange;       // values at the ramp's two ends
-uniform float uSpecular;
 out vec4 fragColor;
 void main() {
-  vec3 n = normalize(vNormalEye);
-  if (!gl_FrontFacing) n = -n;  // open bone pieces show their inside
-  vec3 v = normalize(-vPositionEye);
   vec3 base = uColor.rgb;
   if (uColorSource == 1) base = texture(uTexture, vUv).rgb;
   if (uColorSource == 2) {
@@ -55,11 +60,9 @@ void main() {
     float n = float(textureSize(uRamp, 0).x);  // texel centres: t = 0 and 1 hit the end colours
     base = texture(uRamp, vec2((t * (n - 1.0) + 0.5) / n, 0.5)).rgb;
   }
-  vec3 key = normalize(vec3(-0.4, 0.5, 1.0));
-  vec3 fill = normalize(vec3(0.7, -0.1, 0.7));
-  float diffuse = 0.65 * max(dot(n, key), 0.0) + 0.25 * max(dot(n, fill), 0.0);
-  float specular = uSpecular * pow(max(dot(n, normalize(key + v)), 0.0), 24.0);
-  fragColor = vec4(base * (0.2 + diffuse) + vec3(specular), uColor.a);
+  float light = gl_FrontFacing ? vLight.x : vLight.y;
+  float highlight = gl_FrontFacing ? vHighlight.x : vHighlight.y;
+  fragColor = vec4(base * light + vec3(highlight), uColor.a);
 }
 )";
 

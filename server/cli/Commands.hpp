@@ -56,11 +56,10 @@ struct RenderBenchOptions {
   int repeats = 3;     // turns around the head; medians reported
   int frames = 60;     // frames per turn
   int width = 800, height = 600;
-  int samples = 4;     // multisampling
   std::string jsonPath;
 };
 // `orthosim bench --render`: frames per second of render + read back + JPEG encode while orbiting
-// the phantom's predicted face, coarse and fine.
+// the phantom's predicted face, coarse and fine, without and with 4x multisampling.
 int runRenderBench(const RenderBenchOptions& options);
 
 // Writes the built-in phantom head (variant N) as a surface-based case under outDir.
