@@ -71,7 +71,9 @@ int main(int argc, char** argv) {
   render->add_option("--width", renderOptions.width, "Image width in pixels")->check(CLI::Range(16, 8192));
   render->add_option("--height", renderOptions.height, "Image height in pixels")->check(CLI::Range(16, 8192));
   render->add_option("--colormap", renderOptions.colorMap,
-                     "none (texture), displacement (mm from rest) or difference (this resolution vs the other, mm)");
+                     "none (texture), displacement (mm from rest) or difference (vs --reference, else this resolution vs the other, mm)");
+  render->add_option("--reference", renderOptions.reference, "With --colormap difference: a surface (OBJ, STL, PLY; "
+                     "the case's frame, mm) to measure the predicted skin against, e.g. a scan")->check(CLI::ExistingFile);
   render->add_option("--scale-mm", renderOptions.scaleMm, "Colour scale: displacement maximum or difference range "
                      "(default 10 and 3 mm)")->check(CLI::PositiveNumber);
   render->add_option("--resolution", renderResolution, "coarse (preview) or fine (confirm)")

@@ -47,11 +47,8 @@ void Framebuffer::bindForDrawing() const {
 
 // Multisampled pixels cannot be read: blit them into the single-sampled target first.
 void Framebuffer::resolve(GLbitfield buffers) {
-  if (samples_ <= 1) {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, draw_.fbo.get());
-    return;
-  }
   glBindFramebuffer(GL_READ_FRAMEBUFFER, draw_.fbo.get());
+  if (samples_ <= 1) return;
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolved_.fbo.get());
   glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, buffers, GL_NEAREST);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, resolved_.fbo.get());

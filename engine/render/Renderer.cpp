@@ -80,14 +80,14 @@ struct Renderer::Impl {
     gpu.reset();
   }
 
-  void drawBones(const Camera& camera, bool atRest);
+  void drawBones(bool atRest);
   void drawSkin(const RenderOptions& options, bool atRest);
   void setSkinUniforms(const RenderOptions& options, bool atRest);
   void drawView(const Camera& camera, const RenderOptions& options, double aspect, bool atRest);
   void drawLabels(const RenderOptions& options, const FrameLayout& layout);
 };
 
-void Renderer::Impl::drawBones(const Camera&, bool atRest) {
+void Renderer::Impl::drawBones(bool atRest) {
   const Shader& s = gpu->surface;
   glDisable(GL_CULL_FACE);  // pieces are open where the cuts split them
   s.set("uAtRest", 0);
@@ -149,7 +149,7 @@ void Renderer::Impl::drawView(const Camera& camera, const RenderOptions& o, doub
   s.set("uRamp", 1);
   if (gpu->skinTexture.valid()) gpu->skinTexture.bind(0);
   glEnable(GL_DEPTH_TEST);
-  if (o.showBones) drawBones(camera, atRest);
+  if (o.showBones) drawBones(atRest);
   if (o.showSkin && gpu->skin) drawSkin(o, atRest);
 }
 

@@ -8,8 +8,9 @@
 // time. Every public call (construction and destruction included) binds the context to the
 // calling thread for the call's duration and restores what was current before. So a renderer may
 // be owned by a server thread or an Asio strand and called from whichever thread runs it, but by
-// ONE thread at a time: calls are not synchronised, and a call that overlaps another thread's
-// call throws RenderError. Several renderers may run in parallel on different threads.
+// ONE thread at a time: calls are not synchronised (overlapping calls are an error, which EGL
+// usually reports as a RenderError when it refuses to bind a context current on another thread).
+// Several renderers may run in parallel on different threads.
 #include <Eigen/Core>
 #include <memory>
 #include <string>

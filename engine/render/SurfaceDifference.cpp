@@ -1,7 +1,10 @@
 #include "render/SurfaceDifference.hpp"
 
+#include <memory>
+#include <stdexcept>
 #include <string>
 
+#include "contact/RigidSurface.hpp"
 #include "render/RenderError.hpp"
 
 namespace orthosim::render {
@@ -20,6 +23,18 @@ Eigen::VectorXd signedDifference(const SurfaceMesh& surface, const SurfaceMesh& 
                       " and " + std::to_string(reference.numVertices()) + " vertices); compare deformations of one skin");
   const Eigen::Matrix3Xd n = reference.vertexNormals();
   return (surface.vertices - reference.vertices).cwiseProduct(n).colwise().sum().transpose();
+}
+
+Eigen::VectorXd signedDistances(const Eigen::Matrix3Xd& points, const SurfaceMesh& reference) {
+  std::unique_ptr<RigidSurface> surface;
+  try {
+    surface = std::make_unique<RigidSurface>(reference);
+  } catch (const std::invalid_argument& e) {
+    throw RenderError(std::string("reference surface: ") + e.what());
+  }
+  Eigen::VectorXd d(points.cols());
+  for (Eigen::Index i = 0; i < points.cols(); ++i) d[i] = surface->query(points.col(i)).distance;
+  return d;
 }
 
 }  // namespace orthosim::render

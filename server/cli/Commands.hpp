@@ -40,7 +40,8 @@ struct RenderCommandOptions {
   std::string view = "profile";  // a clinical view (render/ClinicalView.hpp)
   std::string out;               // .png or .jpg
   int width = 800, height = 600;
-  std::string colorMap = "none"; // none, displacement, difference (coarse vs fine)
+  std::string colorMap = "none"; // none, displacement, difference (vs `reference`, else coarse vs fine)
+  std::string reference;         // surface file (OBJ, STL, PLY) the difference map measures against
   Resolution resolution = Resolution::Coarse;
   std::string cacheDir;          // built tissue cache; empty: none
   bool bones = false;

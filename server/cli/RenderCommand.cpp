@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "cli/Commands.hpp"
+#include "mesh/SurfaceImport.hpp"
 #include "render/CaseView.hpp"
 #include "render/ClinicalView.hpp"
 #include "render/JpegEncoder.hpp"
@@ -66,6 +67,12 @@ Eigen::VectorXd resolutionDifference(const SolvedCase& shown, const std::string&
                                   reference.model.deformedSkin(reference.result.state.x));
 }
 
+// Against a reference surface (a scan) when one is given, else against the other resolution.
+Eigen::VectorXd differenceValues(const SolvedCase& shown, const RenderCommandOptions& o) {
+  if (o.reference.empty()) return resolutionDifference(shown, o.cacheDir);
+  return render::signedDistances(shown.model.deformedSkin(shown.result.state.x).vertices, importSurface(o.reference));
+}
+
 Eigen::Matrix3Xd framedPoints(const render::Renderer& renderer, const CaseModel& model) {
   Eigen::Matrix3Xd both(3, 2 * model.tissue.skin.numVertices());
   both << model.tissue.skin.vertices, renderer.skinPositions();  // before/after shows both
@@ -77,6 +84,8 @@ Eigen::Matrix3Xd framedPoints(const render::Renderer& renderer, const CaseModel&
 int runRender(const std::string& casePath, const RenderCommandOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   const render::RenderOptions options = renderOptions(o);
+  if (!o.reference.empty() && options.colorMap != render::ColorMap::Difference)
+    throw render::RenderError("--reference needs --colormap difference");
   const render::ClinicalView view = render::parseClinicalView(o.view);
   CaseSpec spec = loadCaseFile(casePath);
   if (!o.planPath.empty()) spec.plan = loadPlanFile(o.planPath, spec);
@@ -86,7 +95,7 @@ int runRender(const std::string& casePath, const RenderCommandOptions& o) {
   render::Renderer renderer(o.width, o.height);
   render::setCase(renderer, solved.model, texture);
   render::setCaseState(renderer, solved.model, solved.result.state);
-  if (options.colorMap == render::ColorMap::Difference) renderer.setSkinValues(resolutionDifference(solved, o.cacheDir));
+  if (options.colorMap == render::ColorMap::Difference) renderer.setSkinValues(differenceValues(solved, o));
   const render::Camera camera =
       render::clinicalCamera(view, spec.frame, framedPoints(renderer, solved.model), renderer.viewAspect(options));
   writeImage(renderer.render(camera, options), o.out);

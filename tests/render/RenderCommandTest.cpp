@@ -48,12 +48,19 @@ TEST_F(RenderCommand, RendersAPlanFileToAnImage) {
   const RgbImage img = render::readImage(out.string());
   EXPECT_EQ(img.width, 160);
   EXPECT_EQ(img.height, 120);
+  // The prediction against a reference surface: here the case's own rest skin, as a scan would be.
+  const fs::path diff = dir_ / "diff.jpg";
+  ASSERT_EQ(render("--plan " + (dir_ / "plan.json").string() + " --colormap difference --reference " +
+                   (dir_ / "case" / "skin.obj").string() + " --width 160 --height 120 --out " + diff.string()), 0) << errors();
+  EXPECT_EQ(render::readImage(diff.string()).width, 160);
 }
 
 TEST_F(RenderCommand, BadInputIsNamedAndExitsWithOne) {
   const std::string out = " --out " + (dir_ / "x.png").string();
   EXPECT_EQ(render("--view side" + out), 1);
   EXPECT_NE(errors().find("unknown view 'side'"), std::string::npos) << errors();
+  EXPECT_EQ(render("--reference " + (dir_ / "case" / "skin.obj").string() + out), 1);
+  EXPECT_NE(errors().find("--reference needs --colormap difference"), std::string::npos) << errors();
   EXPECT_EQ(render("--colormap heat" + out), 1);
   EXPECT_NE(errors().find("unknown colour map 'heat'"), std::string::npos) << errors();
   std::ofstream(dir_ / "bad.json") << R"({"maxila": {"translation_mm": [-3, 0, 0]}})";

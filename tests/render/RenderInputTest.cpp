@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "mesh/SurfacePrimitives.hpp"
 #include "render/ClinicalView.hpp"
 #include "render/ColorScale.hpp"
 #include "render/ImageFile.hpp"
@@ -131,7 +132,7 @@ TEST(RenderInput, CameraProjectionAndDepthAgree) {
   EXPECT_THROW(c.zoom(0), std::invalid_argument);
 }
 
-TEST(RenderInput, SignedDifferenceIsAlongTheReferenceNormal) {
+TEST(RenderInput, SignedDifferenceAndDistanceToAReference) {
   SurfaceMesh a = triangle(), b = triangle();
   b.vertices.row(2).array() += 1.5;  // triangle() faces +z
   const Eigen::VectorXd d = signedDifference(b, a);
@@ -140,6 +141,14 @@ TEST(RenderInput, SignedDifferenceIsAlongTheReferenceNormal) {
   SurfaceMesh other = triangle();
   other.triangles = Eigen::Vector3i(0, 2, 1);
   EXPECT_NE(errorOf([&] { signedDifference(other, a); }).find("differ in topology"), std::string::npos);
+  // Against a surface of another topology (a scan): the sign says outside or inside.
+  const SurfaceMesh sphere = makeIcosphere(10.0, 3);
+  const Eigen::Matrix3Xd points = (Eigen::Matrix3d() << 11, 0, 0, 0, -9, 0, 0, 0, 10.5).finished();
+  const Eigen::VectorXd s = signedDistances(points, sphere);
+  EXPECT_NEAR(s[0], 1.0, 0.05);
+  EXPECT_NEAR(s[1], -1.0, 0.05);
+  EXPECT_NEAR(s[2], 0.5, 0.05);
+  EXPECT_NE(errorOf([&] { signedDistances(points, SurfaceMesh{}); }).find("reference surface"), std::string::npos);
   EXPECT_EQ(differenceScale(3).colorAt(0), Eigen::Vector3f::Ones());
   EXPECT_EQ(differenceScale(3).ticks, (std::vector<double>{-3, -2, -1, 0, 1, 2, 3}));
 }
