@@ -66,6 +66,10 @@ TEST(RenderInput, BadSkinsAreRefusedByName) {
   RenderOptions o;
   o.skinOpacity = 0;
   EXPECT_NE(errorOf([&] { r.render(Camera{}, o); }).find("opacity"), std::string::npos);
+  r.resize(48, 16);  // a new frame size keeps the skin
+  const RgbImage img = r.render(Camera{}, {});
+  EXPECT_EQ(img.width, 48);
+  EXPECT_EQ(img.pixels.size(), 48u * 16u * 3u);
 }
 
 TEST(RenderInput, NamesOfViewsAndColourMaps) {
