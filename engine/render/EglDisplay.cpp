@@ -94,7 +94,10 @@ EglDisplay chooseDisplay() {
                       "Debian: libegl-mesa0 libgl1-mesa-dri)");
   EglDisplay d;
   std::string log;
-  if (hasExtension(clientExtensions, "EGL_EXT_platform_device") && tryDevices(d, log)) return d;
+  if (!hasExtension(clientExtensions, "EGL_EXT_platform_device"))
+    log += "device: EGL_EXT_platform_device not offered; ";
+  else if (tryDevices(d, log))
+    return d;
   if (trySurfaceless(d, log)) return d;
   throw RenderError("EGL: no headless OpenGL 3.3 display (" + log +
                     "); Debian needs libegl-mesa0 and libgl1-mesa-dri for the CPU renderer");

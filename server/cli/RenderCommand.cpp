@@ -90,9 +90,8 @@ int runRender(const std::string& casePath, const RenderCommandOptions& o) {
   CaseSpec spec = loadCaseFile(casePath);
   if (!o.planPath.empty()) spec.plan = loadPlanFile(o.planPath, spec);
   const RgbImage texture = render::caseTexture(spec);
+  render::Renderer renderer(o.width, o.height);  // before the solve: no EGL fails at once
   const SolvedCase solved = solveCase(spec, o.resolution, o.cacheDir);
-
-  render::Renderer renderer(o.width, o.height);
   render::setCase(renderer, solved.model, texture);
   render::setCaseState(renderer, solved.model, solved.result.state);
   if (options.colorMap == render::ColorMap::Difference) renderer.setSkinValues(differenceValues(solved, o));

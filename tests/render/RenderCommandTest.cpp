@@ -25,8 +25,8 @@ class RenderCommand : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   // Runs `orthosim render CASE <args>` with stderr in dir/err.txt; returns the exit code.
-  int render(const std::string& args) const {
-    const std::string cmd = std::string(ORTHOSIM_CLI) + " render " + casePath_ + " --cache " ORTHOSIM_TEST_CACHE_DIR " " +
+  int render(const std::string& args, const std::string& environment = "") const {
+    const std::string cmd = environment + " " + std::string(ORTHOSIM_CLI) + " render " + casePath_ + " --cache " ORTHOSIM_TEST_CACHE_DIR " " +
                             args + " > /dev/null 2> " + (dir_ / "err.txt").string();
     return WEXITSTATUS(std::system(cmd.c_str()));
   }
@@ -71,6 +71,15 @@ TEST_F(RenderCommand, BadInputIsNamedAndExitsWithOne) {
   EXPECT_EQ(render(out), 1);
   EXPECT_NE(errors().find("tissue.texture: " + (dir_ / "case" / "skin.jpg").string() + ": image file not found"), std::string::npos)
       << errors();
+  EXPECT_FALSE(fs::exists(dir_ / "x.png"));
+}
+
+// A machine without a usable EGL vendor (GLVND pointed at none): a clear error, exit 1, no crash,
+// and before any model is built.
+TEST_F(RenderCommand, WithoutEglTheErrorSaysWhatIsMissing) {
+  EXPECT_EQ(render("--out " + (dir_ / "x.png").string(), "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json"), 1);
+  EXPECT_NE(errors().find("EGL: no headless OpenGL 3.3 display"), std::string::npos) << errors();
+  EXPECT_NE(errors().find("libegl-mesa0"), std::string::npos) << errors();
   EXPECT_FALSE(fs::exists(dir_ / "x.png"));
 }
 
