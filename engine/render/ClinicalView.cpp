@@ -19,8 +19,8 @@ ViewAngles anglesOf(ClinicalView v) {
     case ClinicalView::ProfileLeft: return {-90, 0};
     case ClinicalView::ThreeQuarter: return {45, 0};
     case ClinicalView::ThreeQuarterLeft: return {-45, 0};
-    case ClinicalView::WormsEye: return {0, -60};
-    case ClinicalView::BirdsEye: return {0, 60};
+    case ClinicalView::WormsEye: return {0, -45};
+    case ClinicalView::BirdsEye: return {0, 45};
   }
   return {0, 0};
 }

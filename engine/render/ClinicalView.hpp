@@ -1,8 +1,9 @@
 #pragma once
 // The standard views of facial photography, from the case's anatomical frame: frontal; right and
 // left profile; right and left three-quarter (45 degrees); worm's eye (from below the chin,
-// 60 degrees under the horizontal: nostrils, chin and cheek symmetry); bird's eye (60 degrees
-// above: cheek and nasal projection). A preset sets the angles and frames the given points.
+// 45 degrees under the horizontal, the nose tip about level with the brows: nostrils, chin and
+// cheek symmetry); bird's eye (45 degrees above: cheek and nasal projection). A preset sets the
+// angles and frames the given points.
 #include <Eigen/Core>
 #include <string>
 #include <vector>

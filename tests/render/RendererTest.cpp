@@ -171,7 +171,7 @@ TEST_F(Renderer, ViewPresetsDifferAsExpected) {
     if (v == ClinicalView::Frontal) EXPECT_GT(toEye.dot(f.anterior), 0.99);
     if (v == ClinicalView::Profile) EXPECT_GT(toEye.dot(f.right), 0.99);
     if (v == ClinicalView::ThreeQuarter) EXPECT_NEAR(toEye.dot(f.right), toEye.dot(f.anterior), 1e-9);
-    if (v == ClinicalView::WormsEye) EXPECT_LT(toEye.dot(f.superior), -0.8);
+    if (v == ClinicalView::WormsEye) EXPECT_NEAR(toEye.dot(f.superior), -std::sqrt(0.5), 1e-9);
   }
 }
 
