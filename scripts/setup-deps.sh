@@ -17,6 +17,13 @@ PACKAGES=(
   libmeshoptimizer-dev   # surface simplification to coarse/fine skin counts (engine/mesh)
   libturbojpeg0-dev      # JPEG: phantom skin texture, streamed frames
   libboost-dev           # Boost 1.74 headers: Beast/Asio HTTP and WebSocket server (server/net), header-only
+  libegl-dev             # EGL headers and libEGL (GLVND): off-screen rendering without a display (engine/render)
+  libopengl-dev          # libOpenGL (GLVND): OpenGL 3.3 core entry points without GLX (engine/render)
+  libgl-dev              # GL/gl.h and GL/glext.h (engine/render)
+  libegl-mesa0           # Mesa's EGL vendor: the surfaceless platform used where there is no GPU
+  libgl1-mesa-dri        # Mesa's drivers, among them llvmpipe, the CPU rasteriser (CI, this machine)
+  libpng-dev             # PNG images: `orthosim render` output, PNG textures (engine/render)
+  libstb-dev             # stb_easy_font.h: the bitmap font of the colour-map legend (header only)
 )
 
 missing=()

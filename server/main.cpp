@@ -48,12 +48,49 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--changes", latency.changes, "Pose changes for --latency")->check(CLI::Range(1, 10000));
   benchCmd->add_option("--data", latency.dataDir, "Data folder for --latency (phantom and mesh cache, reused)");
 
+  bool benchRender = false;
+  orthosim::cli::RenderBenchOptions renderBench;
+  benchCmd->add_flag("--render", benchRender, "Time off-screen rendering instead: orbiting the phantom's predicted face "
+                     "at coarse and fine resolution (render + read back + JPEG encode)");
+  benchCmd->add_option("--frames", renderBench.frames, "With --render: frames per turn around the head")->check(CLI::Range(4, 3600));
+  benchCmd->add_option("--width", renderBench.width, "With --render: image width")->check(CLI::Range(16, 8192));
+  benchCmd->add_option("--height", renderBench.height, "With --render: image height")->check(CLI::Range(16, 8192));
+
   int phantomVariant = 0;
   std::string phantomOut = "phantom";
   auto* phantom = app.add_subcommand("phantom", "Write the built-in phantom head as a surface-based case");
   phantom->add_option("--out", phantomOut, "Output folder")->required();
   phantom->add_option("--variant", phantomVariant, "Morphology variant (see --help of the case: 0 class I, ...)")
       ->check(CLI::Range(0, 100));
+
+  std::string renderCase, renderResolution = "coarse";
+  orthosim::cli::RenderCommandOptions renderOptions;
+  renderOptions.cacheDir = orthosim::defaultCacheDir();
+  bool renderNoCache = false;
+  auto* render = app.add_subcommand("render", "Solve a case's plan and render the predicted face off-screen (PNG or JPEG)");
+  render->add_option("case", renderCase, "Surface-based case file (JSON)")->required()->check(CLI::ExistingFile);
+  render->add_option("--out", renderOptions.out, "Image file: .png or .jpg")->required();
+  render->add_option("--plan", renderOptions.planPath,
+                     "Plan file {fragment: {translation_mm, rotation_deg, center_mm}} (or {\"plan\": {...}}) "
+                     "instead of the case's plan")->check(CLI::ExistingFile);
+  render->add_option("--view", renderOptions.view,
+                     "frontal, profile (right), profile_left, three_quarter (right), three_quarter_left, worms_eye, birds_eye");
+  render->add_option("--width", renderOptions.width, "Image width in pixels")->check(CLI::Range(16, 8192));
+  render->add_option("--height", renderOptions.height, "Image height in pixels")->check(CLI::Range(16, 8192));
+  render->add_option("--colormap", renderOptions.colorMap,
+                     "none (texture), displacement (mm from rest) or difference (vs --reference, else this resolution vs the other, mm)");
+  render->add_option("--reference", renderOptions.reference, "With --colormap difference: a surface (OBJ, STL, PLY; "
+                     "the case's frame, mm) to measure the predicted skin against, e.g. a scan")->check(CLI::ExistingFile);
+  render->add_option("--scale-mm", renderOptions.scaleMm, "Colour scale: displacement maximum or difference range "
+                     "(default 10 and 3 mm)")->check(CLI::PositiveNumber);
+  render->add_option("--resolution", renderResolution, "coarse (preview) or fine (confirm)")
+      ->check(CLI::IsMember({"coarse", "fine"}));
+  render->add_option("--cache", renderOptions.cacheDir, "Folder of built tissue models (default: ~/.cache/orthosim)");
+  render->add_flag("--no-cache", renderNoCache, "Build the tissue model even if it is cached, and do not store it");
+  render->add_flag("--bones", renderOptions.bones, "Draw the bone fragments at their planned poses");
+  render->add_option("--skin-opacity", renderOptions.skinOpacity, "Below 1: translucent skin over the bones")
+      ->check(CLI::Range(0.05, 1.0));
+  render->add_flag("--before-after", renderOptions.beforeAfter, "Rest (left) and predicted (right) side by side");
 
   orthosim::cli::CompareOptions compareOptions;
   auto* compare = app.add_subcommand("compare", "Error of a predicted skin against a reference surface (signed distance, "
@@ -108,6 +145,11 @@ int main(int argc, char** argv) {
       latency.jsonPath = bench.jsonPath;
       return orthosim::cli::runLatencyBench(latency);
     }
+    if (*benchCmd && benchRender) {
+      renderBench.repeats = bench.repeats == 5 ? 3 : bench.repeats;
+      renderBench.jsonPath = bench.jsonPath;
+      return orthosim::cli::runRenderBench(renderBench);
+    }
     if (*benchCmd && (benchPhantom || !caseBench.casePath.empty())) {
       caseBench.repeats = bench.repeats == 5 ? 3 : bench.repeats;
       caseBench.jsonPath = bench.jsonPath;
@@ -116,6 +158,11 @@ int main(int argc, char** argv) {
     if (*benchCmd) return orthosim::cli::runBench(bench);
     if (*phantom) return orthosim::cli::runPhantom(phantomVariant, phantomOut);
     if (*serve) return orthosim::cli::runServe(serveOptions);
+    if (*render) {
+      renderOptions.resolution = renderResolution == "fine" ? orthosim::Resolution::Fine : orthosim::Resolution::Coarse;
+      if (renderNoCache) renderOptions.cacheDir.clear();
+      return orthosim::cli::runRender(renderCase, renderOptions);
+    }
     if (*compare) return orthosim::cli::runCompare(compareOptions);
   } catch (const std::exception& e) {
     std::cerr << "orthosim: " << e.what() << "\n";

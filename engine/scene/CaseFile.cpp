@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <set>
 
+#include "scene/PlanFile.hpp"
 #include "scene/SceneFields.hpp"
 
 namespace orthosim {
@@ -259,20 +260,7 @@ CaseSpec loadCaseFile(const std::string& path) {
     });
   }
 
-  if (root.has("plan")) {
-    JsonReader plan = root.child("plan");
-    for (const auto& [name, motion] : plan.raw().items()) {
-      plan.has(name);
-      if (!names.count(name)) {
-        std::string known;
-        for (const auto& n : c.fragmentNames()) known += (known.empty() ? "" : ", ") + n;
-        plan.fail("unknown fragment '" + name + "' (fragments: " + known + ")", name);
-      }
-      for (const CaseBone& b : c.bones)
-        if (b.name == name && b.fixed) plan.fail("'" + name + "' is a fixed bone; cut a fragment from it to move it", name);
-      c.plan[name] = readFragmentMotion(JsonReader(path, motion, plan.sub(name)));
-    }
-  }
+  if (root.has("plan")) c.plan = readCasePlan(root.child("plan"), c);
   if (root.has("solver")) readSolverSettings(root.child("solver"), c.solver);
   root.rejectUnknown();
   return c;

@@ -13,8 +13,7 @@
 #include "cli/Commands.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseModel.hpp"
-#include "scene/JsonReader.hpp"
-#include "scene/SceneFields.hpp"
+#include "scene/PlanFile.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim::cli {
@@ -114,18 +113,7 @@ int runCaseBench(const CaseBenchOptions& opt) {
     std::printf("phantom variant %d written in %.2f s\n", opt.phantomVariant, since(t0));
   }
   CaseSpec spec = loadCaseFile(casePath);
-  if (!opt.planPath.empty()) {
-    const nlohmann::json plan = parseJsonFile(opt.planPath);
-    JsonReader r(opt.planPath, plan, "");
-    spec.plan.clear();
-    for (const auto& [name, motion] : plan.items()) {
-      r.has(name);
-      const auto names = spec.fragmentNames();
-      if (std::find(names.begin(), names.end(), name) == names.end()) r.fail("unknown fragment '" + name + "'", name);
-      spec.plan[name] = readFragmentMotion(JsonReader(opt.planPath, motion, name));
-    }
-    r.rejectUnknown();
-  }
+  if (!opt.planPath.empty()) spec.plan = loadPlanFile(opt.planPath, spec);
   std::printf("orthosim bench: case '%s', medians of %d runs; %u hardware threads\n"
               "cold_s: surfaces to tetrahedra without cache; cached_s: the same read from the cache;\n"
               "model_s: solver model build (pattern, analysis, rest factorisation); solve_s: the case's plan\n\n",

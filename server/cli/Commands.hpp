@@ -45,6 +45,34 @@ struct LatencyBenchOptions {
 // Round-trip latency of coarse previews through the planning server (bench --latency).
 int runLatencyBench(const LatencyBenchOptions& options);
 
+struct RenderCommandOptions {
+  std::string planPath;          // plan file replacing the case's plan; empty: the case's plan
+  std::string view = "profile";  // a clinical view (render/ClinicalView.hpp)
+  std::string out;               // .png or .jpg
+  int width = 800, height = 600;
+  std::string colorMap = "none"; // none, displacement, difference (vs `reference`, else coarse vs fine)
+  std::string reference;         // surface file (OBJ, STL, PLY) the difference map measures against
+  Resolution resolution = Resolution::Coarse;
+  std::string cacheDir;          // built tissue cache; empty: none
+  bool bones = false;
+  double skinOpacity = 1.0;      // < 1 also shows the bones
+  bool beforeAfter = false;
+  double scaleMm = 0;            // colour scale: displacement max or difference range; 0: default
+};
+// Renders a case's predicted face for a plan into an image file. Exit codes as for solve: 0, 1 bad
+// input (also no EGL), 2 the solve did not converge (the image shows the last converged state).
+int runRender(const std::string& casePath, const RenderCommandOptions& options);
+
+struct RenderBenchOptions {
+  int repeats = 3;     // turns around the head; medians reported
+  int frames = 60;     // frames per turn
+  int width = 800, height = 600;
+  std::string jsonPath;
+};
+// `orthosim bench --render`: frames per second of render + read back + JPEG encode while orbiting
+// the phantom's predicted face, coarse and fine, without and with 4x multisampling.
+int runRenderBench(const RenderBenchOptions& options);
+
 // Writes the built-in phantom head (variant N) as a surface-based case under outDir.
 int runPhantom(int variant, const std::string& outDir);
 

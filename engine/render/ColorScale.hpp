@@ -1,0 +1,28 @@
+#pragma once
+// Colour scales of the skin's colour maps, on fixed mm ranges so that two plans, or two frames,
+// are compared by colour rather than re-scaled each time:
+//  - displacement magnitude, 0..max: white (no motion) through yellow and orange to dark red;
+//  - signed difference, -range..+range: blue (inward) through white (0) to red (outward), the
+//    diverging scale of the surface-comparison literature.
+// The GPU samples the same colours from a ramp texture; the legend draws them with ticks.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace orthosim::render {
+
+struct ColorScale {
+  std::string title;                    // legend heading, with the unit
+  double min = 0, max = 1;              // values at the ramp's ends; beyond them the end colours
+  std::vector<Eigen::Vector3f> stops;   // evenly spaced over [min, max], RGB in [0, 1]
+  std::vector<double> ticks;            // labelled values
+
+  Eigen::Vector3f colorAt(double value) const;
+  // `n` colours evenly over [min, max], for the ramp texture.
+  std::vector<Eigen::Vector3f> sample(int n = 256) const;
+};
+
+ColorScale displacementScale(double maxMm = 10.0);
+ColorScale differenceScale(double rangeMm = 3.0);
+
+}  // namespace orthosim::render

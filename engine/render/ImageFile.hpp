@@ -1,0 +1,14 @@
+#pragma once
+// Image files of any format the renderer reads (a case's skin texture): JPEG (libjpeg-turbo) or
+// PNG (libpng), told apart by their first bytes, not by the file name.
+#include <string>
+
+#include "phantom/Phantom.hpp"  // RgbImage
+
+namespace orthosim::render {
+
+// The image as RGB, top row first. Throws RenderError naming the path when the file is missing,
+// unreadable, of another format or damaged.
+RgbImage readImage(const std::string& path);
+
+}  // namespace orthosim::render

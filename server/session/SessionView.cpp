@@ -1,0 +1,93 @@
+#include "session/SessionView.hpp"
+
+#include <chrono>
+
+#include "render/CaseView.hpp"
+
+namespace orthosim::server {
+namespace {
+
+constexpr int kDefaultWidth = 800, kDefaultHeight = 600;
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+SessionView::SessionView(std::shared_ptr<const CaseModel> model) : model_(std::move(model)) {}
+
+SessionView::~SessionView() = default;
+
+void SessionView::postState(const SimState& state) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  pendingState_ = state;
+}
+
+void SessionView::postView(const ViewRequest& request) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  pendingView_.merge(request);
+}
+
+void SessionView::postDifference(Eigen::VectorXd valuesMm) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  pendingDifference_ = std::move(valuesMm);
+}
+
+void SessionView::create() {
+  renderer_ = std::make_unique<render::Renderer>(kDefaultWidth, kDefaultHeight, 0);  // no MSAA: 2x the fps
+  render::setCase(*renderer_, *model_, render::caseTexture(model_->spec));
+  jpeg_ = std::make_unique<render::JpegEncoder>(85);
+  camera_ = render::clinicalCamera(render::ClinicalView::Frontal, model_->spec.frame, renderer_->skinPositions(),
+                                   renderer_->viewAspect(options_));
+}
+
+void SessionView::applyView(const ViewRequest& v) {
+  if (v.size && (v.size->x() != renderer_->width() || v.size->y() != renderer_->height()))
+    renderer_->resize(v.size->x(), v.size->y());
+  if (v.colorMap) options_.colorMap = render::parseColorMap(*v.colorMap);
+  if (v.bones) options_.showBones = *v.bones;
+  if (v.skinOpacity) options_.skinOpacity = static_cast<float>(*v.skinOpacity);
+  if (v.beforeAfter) options_.beforeAfter = *v.beforeAfter;
+  if (v.preset || v.size || v.beforeAfter) {  // the framing depends on the view's aspect
+    if (v.preset) preset_ = *v.preset;
+    camera_ = render::clinicalCamera(render::parseClinicalView(preset_), model_->spec.frame, renderer_->skinPositions(),
+                                     renderer_->viewAspect(options_));
+  }
+  camera_.orbit(v.orbitDeg.x(), v.orbitDeg.y());
+  camera_.zoom(v.zoom);
+  const double mmPerPixel = camera_.mmPerPixel(renderer_->height());
+  camera_.pan(-v.panPixels.x() * mmPerPixel, v.panPixels.y() * mmPerPixel);  // the face follows the mouse
+}
+
+Frame SessionView::render() {
+  if (!renderer_) create();
+  std::optional<SimState> state;
+  ViewRequest view;
+  std::optional<Eigen::VectorXd> difference;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    state.swap(pendingState_);
+    std::swap(view, pendingView_);
+    difference.swap(pendingDifference_);
+  }
+  if (state) render::setCaseState(*renderer_, *model_, *state);
+  if (difference) renderer_->setSkinValues(*difference);
+  applyView(view);
+  const auto t0 = std::chrono::steady_clock::now();
+  renderer_->render(camera_, options_, image_);
+  const double renderMs = msSince(t0);
+  const auto t1 = std::chrono::steady_clock::now();
+  Frame frame;
+  jpeg_->encode(image_, frame.jpeg);
+  frame.info = {{"width", renderer_->width()},
+                {"height", renderer_->height()},
+                {"render_ms", renderMs},
+                {"encode_ms", msSince(t1)},
+                {"bytes", frame.jpeg.size()},
+                {"view", preset_},
+                {"colormap", render::colorMapNames()[static_cast<size_t>(options_.colorMap)]}};
+  return frame;
+}
+
+}  // namespace orthosim::server

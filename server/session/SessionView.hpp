@@ -1,0 +1,62 @@
+#pragma once
+// What one session sees: its own off-screen renderer of the open case, the camera and the frame
+// options. Other threads post the newest solved state and view changes; a frame task on the
+// render thread takes whatever is newest and draws it, so a burst of poses or mouse moves costs
+// one frame, not a backlog.
+#include <Eigen/Core>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "phantom/Phantom.hpp"  // RgbImage
+#include "render/Camera.hpp"
+#include "render/ClinicalView.hpp"
+#include "render/JpegEncoder.hpp"
+#include "render/RenderOptions.hpp"
+#include "render/Renderer.hpp"
+#include "scene/CaseModel.hpp"
+#include "session/ViewRequest.hpp"
+#include "solver/Coupling.hpp"
+
+namespace orthosim::server {
+
+struct Frame {
+  std::vector<unsigned char> jpeg;
+  nlohmann::json info;  // {"width", "height", "render_ms", "encode_ms", "view", "colormap"}
+};
+
+class SessionView {
+ public:
+  explicit SessionView(std::shared_ptr<const CaseModel> model);
+  ~SessionView();
+
+  // Any thread.
+  void postState(const SimState& state);
+  void postView(const ViewRequest& request);
+  void postDifference(Eigen::VectorXd valuesMm);
+
+  // The render thread only. Throws RenderError (no EGL, bad texture).
+  Frame render();
+
+ private:
+  void create();  // the renderer, the case uploaded, the frontal camera
+  void applyView(const ViewRequest& v);
+
+  std::shared_ptr<const CaseModel> model_;
+  std::mutex mutex_;  // guards the pending fields
+  std::optional<SimState> pendingState_;
+  ViewRequest pendingView_;
+  std::optional<Eigen::VectorXd> pendingDifference_;
+
+  std::unique_ptr<render::Renderer> renderer_;  // render thread from here on
+  std::unique_ptr<render::JpegEncoder> jpeg_;
+  render::Camera camera_;
+  std::string preset_ = "frontal";
+  render::RenderOptions options_;
+  RgbImage image_;
+};
+
+}  // namespace orthosim::server
