@@ -22,16 +22,21 @@ void check(const SurfaceMesh& s, const std::string& which) {
 
 }  // namespace
 
-SurfaceError measureSurfaceError(const SurfaceMesh& predicted, const SurfaceMesh& reference) {
-  check(predicted, "predicted");
+Eigen::VectorXd signedDistancesTo(const Eigen::Matrix3Xd& points, const SurfaceMesh& reference) {
   check(reference, "reference");
-  SurfaceError e;
-  e.area = vertexAreas(predicted);
-  const RigidSurface ref(reference);
-  e.distance.resize(predicted.numVertices());
+  const RigidSurface surface(reference);
+  Eigen::VectorXd d(points.cols());
   // RigidSurface::query is thread-safe.
 #pragma omp parallel for schedule(static)
-  for (int v = 0; v < predicted.numVertices(); ++v) e.distance[v] = ref.query(predicted.vertices.col(v)).distance;
+  for (Eigen::Index i = 0; i < points.cols(); ++i) d[i] = surface.query(points.col(i)).distance;
+  return d;
+}
+
+SurfaceError measureSurfaceError(const SurfaceMesh& predicted, const SurfaceMesh& reference) {
+  check(predicted, "predicted");  // first, so a bad predicted surface is named before the reference
+  SurfaceError e;
+  e.area = vertexAreas(predicted);
+  e.distance = signedDistancesTo(predicted.vertices, reference);
   return e;
 }
 

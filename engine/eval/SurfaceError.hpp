@@ -21,4 +21,8 @@ struct SurfaceError {
 // triangle of positive area, a non-finite vertex, a triangle using a missing vertex.
 SurfaceError measureSurfaceError(const SurfaceMesh& predicted, const SurfaceMesh& reference);
 
+// The signed distances alone, from any points (the renderer's difference map against a scan).
+// Throws std::invalid_argument "reference surface: ..." for a bad reference, as above.
+Eigen::VectorXd signedDistancesTo(const Eigen::Matrix3Xd& points, const SurfaceMesh& reference);
+
 }  // namespace orthosim
