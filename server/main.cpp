@@ -105,7 +105,10 @@ int main(int argc, char** argv) {
                                                          "(a solve's skin_rest.obj; default: the case's skin)")
       ->check(CLI::ExistingFile)->needs(compareCase);
   compare->add_option("--map", compareOptions.mapPath, "Write the predicted skin coloured by its error (.ply or .obj)");
-  compare->add_option("--range", compareOptions.rangeMm, "Colour range of the map, +-mm (default 3)")
+  compare->add_option("--image", compareOptions.imagePath, "Render the error map of the predicted skin (.png or .jpg)");
+  compare->add_option("--view", compareOptions.view, "The image's view: frontal, profile, profile_left, three_quarter, "
+                                                     "three_quarter_left, worms_eye, birds_eye");
+  compare->add_option("--range", compareOptions.rangeMm, "Colour range of the map and image, +-mm (default 3)")
       ->check(CLI::Range(0.01, 1000.0));
   compare->add_option("--json", compareOptions.jsonPath, "Also write the figures to this JSON file");
 

@@ -82,6 +82,8 @@ struct CompareOptions {
   std::string casePath;   // optional case: region of interest, landmarks (and its skin as the rest skin)
   std::string restPath;   // optional rest skin with the predicted skin's triangles (a solve's skin_rest.obj)
   std::string mapPath;    // optional coloured error map (.ply or .obj with vertex colours)
+  std::string imagePath;  // optional rendered error map (.png or .jpg, engine/render)
+  std::string view = "frontal";  // its clinical view (render/ClinicalView.hpp)
   std::string jsonPath;   // optional machine-readable copy of the figures
   double rangeMm = 3.0;   // the map's colour range, +-mm
 };

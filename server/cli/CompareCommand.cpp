@@ -1,5 +1,6 @@
-// `orthosim compare PREDICTED REFERENCE [--case CASE.json [--rest SKIN]] [--map MAP.ply] [--json FILE]`: the
-// error of a predicted skin against a reference surface (issue 7, the paper's section 3).
+// `orthosim compare PREDICTED REFERENCE [--case CASE.json [--rest SKIN]] [--map MAP.ply] [--image MAP.png]
+// [--json FILE]`: the error of a predicted skin against a reference surface (issue 7, the paper's
+// section 3).
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -7,8 +8,11 @@
 
 #include "cli/Commands.hpp"
 #include "eval/Comparison.hpp"
-#include "eval/ErrorColours.hpp"
 #include "mesh/SurfaceImport.hpp"
+#include "render/ClinicalView.hpp"
+#include "render/ColorScale.hpp"
+#include "render/ImageFile.hpp"
+#include "render/Renderer.hpp"
 #include "scene/CaseFile.hpp"
 
 namespace orthosim::cli {
@@ -52,6 +56,30 @@ void printLandmarks(const std::vector<LandmarkError>& lms) {
   }
 }
 
+// Vertex colours of the error map: the renderer's difference scale (blue inside, white 0, red
+// outside the reference, held beyond +-range); grey outside the region of interest.
+Eigen::Matrix3Xf mapColours(const Comparison& c, double rangeMm) {
+  const render::ColorScale scale = render::differenceScale(rangeMm);
+  Eigen::Matrix3Xf out(3, c.error.distance.size());
+  for (Eigen::Index i = 0; i < out.cols(); ++i)
+    out.col(i) = !c.inRegion.empty() && !c.inRegion[i] ? Eigen::Vector3f(0.6f, 0.6f, 0.6f) : scale.colorAt(c.error.distance[i]);
+  return out;
+}
+
+// The predicted skin coloured by its signed error on the renderer's difference scale, with its
+// legend. The whole skin is coloured: the renderer has no mask for the region of interest.
+void renderErrorImage(const SurfaceMesh& predicted, const Comparison& c, const AnatomicalFrame& frame, const CompareOptions& o) {
+  render::Renderer renderer(800, 600);
+  renderer.setSkin(predicted);
+  renderer.setSkinValues(c.error.distance);
+  render::RenderOptions options;
+  options.colorMap = render::ColorMap::Difference;
+  options.differenceRangeMm = o.rangeMm;
+  const render::Camera camera = render::clinicalCamera(render::parseClinicalView(o.view), frame, predicted.vertices,
+                                                       renderer.viewAspect(options));
+  render::writeImage(renderer.render(camera, options), o.imagePath);
+}
+
 }  // namespace
 
 int runCompare(const CompareOptions& o) {
@@ -81,9 +109,13 @@ int runCompare(const CompareOptions& o) {
     printLandmarks(c.landmarks);
 
     if (!o.mapPath.empty()) {
-      exportSurface(predicted, errorColours(c.error.distance, c.inRegion, o.rangeMm), o.mapPath);
+      exportSurface(predicted, mapColours(c, o.rangeMm), o.mapPath);
       std::cout << "error map written to " << o.mapPath << format(" (blue -%g mm, white 0, red +%g mm", o.rangeMm, o.rangeMm)
                 << (c.hasRegion ? "; grey outside the region of interest)" : ")") << "\n";
+    }
+    if (!o.imagePath.empty()) {
+      renderErrorImage(predicted, c, in.frame, o);
+      std::cout << "error image (" << o.view << " view, whole skin) written to " << o.imagePath << "\n";
     }
     if (!o.jsonPath.empty()) {
       std::ofstream out(o.jsonPath);

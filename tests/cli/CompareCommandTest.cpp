@@ -1,5 +1,6 @@
 // `orthosim compare` on the phantom's case: its skin against itself is zero everywhere, the skin
-// moved 2 mm forward shows 2 mm at every landmark, and bad inputs are named.
+// moved 2 mm forward shows 2 mm at every landmark and a red face in the rendered map, and bad
+// inputs are named.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -12,6 +13,7 @@
 
 #include "mesh/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
+#include "render/ImageFile.hpp"
 
 namespace fs = std::filesystem;
 
@@ -62,7 +64,11 @@ TEST_F(CompareCommand, SkinAgainstItselfIsZeroEverywhere) {
     EXPECT_LT(l["rest_offset_mm"].get<double>(), 0.5) << l["name"];
   }
   EXPECT_NE(read("out.txt").find("1 mm 100.0%"), std::string::npos) << read("out.txt");
-  EXPECT_NE(read("self.ply").find("property uchar red"), std::string::npos);
+  // The map: white (no error) in the region, grey outside it.
+  const std::string ply = read("self.ply");
+  EXPECT_NE(ply.find("property uchar red"), std::string::npos);
+  EXPECT_NE(ply.find(" 255 255 255 255\n"), std::string::npos);
+  EXPECT_NE(ply.find(" 153 153 153 255\n"), std::string::npos);
 }
 
 TEST_F(CompareCommand, SkinMovedForwardShowsTheMoveAtEveryLandmark) {
@@ -70,7 +76,7 @@ TEST_F(CompareCommand, SkinMovedForwardShowsTheMoveAtEveryLandmark) {
   skin.vertices.row(0).array() -= 2.0;  // 2 mm anterior (+x is posterior)
   exportSurface(skin, path("forward.obj"));
   ASSERT_EQ(compare(path("forward.obj") + " " + path("case/skin.obj") + " --case " + path("case/case.json") + " --json " +
-                    path("forward.json")),
+                    path("forward.json") + " --image " + path("forward.png")),
             0)
       << read("err.txt");
   const nlohmann::json j = nlohmann::json::parse(read("forward.json"));
@@ -82,6 +88,14 @@ TEST_F(CompareCommand, SkinMovedForwardShowsTheMoveAtEveryLandmark) {
     EXPECT_NEAR(e[1].get<double>(), 0.0, 1e-4) << l["name"];
     EXPECT_NEAR(e[2].get<double>(), 0.0, 1e-4) << l["name"];
   }
+  // The frontal image: the face, now in front of the reference, is red (outside) at the centre.
+  const RgbImage image = render::readImage(path("forward.png"));
+  ASSERT_EQ(image.width, 800);
+  ASSERT_EQ(image.height, 600);
+  const unsigned char* centre = &image.pixels[3 * (image.width * (image.height / 2) + image.width / 2)];
+  EXPECT_GT(centre[0], 150) << int(centre[0]) << " " << int(centre[1]) << " " << int(centre[2]);
+  EXPECT_LT(centre[2], 100) << int(centre[0]) << " " << int(centre[1]) << " " << int(centre[2]);
+
   // A closest point is never farther than the move; where the skin runs along it, much closer.
   const auto& whole = j["whole_surface"];
   EXPECT_LT(whole["max_abs_mm"].get<double>(), 2.0 + 1e-4);

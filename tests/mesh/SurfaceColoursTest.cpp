@@ -1,38 +1,18 @@
-// The error map's colours (blue - white - red over +-range, grey outside the region) and their
-// export as PLY and OBJ vertex colours through assimp.
+// Vertex colours (the error map of `orthosim compare --map`) exported as PLY and OBJ through assimp.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <sstream>
 
-#include "eval/ErrorColours.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "mesh/SurfacePrimitives.hpp"
 
 namespace orthosim {
 namespace {
 
-TEST(ErrorColours, DivergingScaleHeldAtItsEnds) {
-  Eigen::VectorXd d(6);
-  d << 0, 3, -3, 9, -1.5, std::numeric_limits<double>::quiet_NaN();
-  const Eigen::Matrix3Xf c = errorColours(d, {1, 1, 1, 1, 1, 1}, 3.0);
-  EXPECT_EQ(c.col(0), Eigen::Vector3f(1, 1, 1));
-  EXPECT_GT(c(0, 1), 0.7f);  // red
-  EXPECT_LT(c(2, 1), 0.2f);
-  EXPECT_GT(c(2, 2), 0.7f);  // blue
-  EXPECT_LT(c(0, 2), 0.2f);
-  EXPECT_EQ(c.col(3), c.col(1));  // beyond the range: the end colour
-  EXPECT_NEAR(c(0, 4), 0.5f * (1 + c(0, 2)), 1e-6);  // halfway to blue
-  EXPECT_EQ(c.col(5), Eigen::Vector3f(0.6f, 0.6f, 0.6f));  // no value: grey
-  const Eigen::Matrix3Xf outside = errorColours(d, {0, 1, 1, 1, 1, 1});
-  EXPECT_EQ(outside.col(0), Eigen::Vector3f(0.6f, 0.6f, 0.6f));
-  EXPECT_THROW(errorColours(d, {}, 0.0), std::invalid_argument);
-}
-
-TEST(ErrorColours, ExportedAsPlyAndObjVertexColours) {
+TEST(SurfaceExport, VertexColoursAsPlyAndObj) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("orthosim_map_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const SurfaceMesh s = makeIcosphere(10, 1);
