@@ -45,6 +45,8 @@ void PlanningService::shutdown() {
   fineJobs_.shutdown();
   previewPool_.stop();  // queued previews never start; running ones see their session's cancel
   previewPool_.join();
+  renderPool_.stop();
+  renderPool_.join();
 }
 
 }  // namespace orthosim::server

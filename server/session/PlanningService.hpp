@@ -35,6 +35,8 @@ class PlanningService {
 
   CaseLibrary& cases() { return cases_; }
   boost::asio::thread_pool& previewPool() { return previewPool_; }
+  // One thread draws every session's frames: each session's renderer is used by one thread.
+  boost::asio::thread_pool& renderPool() { return renderPool_; }
   JobQueue& fineJobs() { return fineJobs_; }
   PlanStore& plans() { return plans_; }
   ExportStore& exports() { return exports_; }
@@ -56,6 +58,7 @@ class PlanningService {
   PlanningOptions options_;
   CaseLibrary cases_;
   boost::asio::thread_pool previewPool_;
+  boost::asio::thread_pool renderPool_{1};
   JobQueue fineJobs_;
   PlanStore plans_;
   ExportStore exports_;
