@@ -97,7 +97,7 @@ const handlers = {
     a.hidden = false;
   },
   frame: (m) => {
-    $("frame-info").textContent = `${m.view}, ${m.width}×${m.height}, drawn in ${m.render_ms.toFixed(0)} ms`;
+    $("frame-info").textContent = `${m.view} view, colour map: ${m.colormap}, ${m.width}×${m.height}, drawn in ${m.render_ms.toFixed(0)} ms`;
   },
   error: (m) => {
     if (m.error === "unknown_type" && /view/.test(m.message)) return;  // a server without rendering
