@@ -57,12 +57,13 @@ class PlanningService {
  private:
   PlanningOptions options_;
   CaseLibrary cases_;
-  boost::asio::thread_pool previewPool_;
-  boost::asio::thread_pool renderPool_{1};
   JobQueue fineJobs_;
   PlanStore plans_;
   ExportStore exports_;
   std::atomic<int> sessions_{0};
+  // Last, so destroyed first: work they still hold may end a session, which uses the members above.
+  boost::asio::thread_pool previewPool_;
+  boost::asio::thread_pool renderPool_{1};
 };
 
 }  // namespace orthosim::server
