@@ -77,14 +77,7 @@ void WebSocketSession::onRead(beast::error_code ec, std::size_t bytes) {
 
 void WebSocketSession::queue(std::string bytes, bool binary) {
   if (closing_) return;
-  if (binary)  // no backlog of frames: the newest replaces those not yet started
-    for (auto it = outbox_.size() > 1 ? outbox_.begin() + 1 : outbox_.end(); it != outbox_.end();)
-      if (it->binary) {
-        outboxBytes_ -= it->bytes.size();
-        it = outbox_.erase(it);
-      } else {
-        ++it;
-      }
+  if (binary) dropWaitingFrames();  // no backlog of frames: the newest replaces those not yet started
   outboxBytes_ += bytes.size();
   outbox_.push_back({std::move(bytes), binary});
   if (outboxBytes_ > limits_.outboxBytes) {  // the client does not read: let it go
@@ -94,6 +87,18 @@ void WebSocketSession::queue(std::string bytes, bool binary) {
     return;
   }
   if (outbox_.size() == 1) write();
+}
+
+void WebSocketSession::dropWaitingFrames() {
+  if (outbox_.size() < 2) return;  // the front one is being written
+  for (auto it = outbox_.begin() + 1; it != outbox_.end();) {
+    if (!it->binary) {
+      ++it;
+      continue;
+    }
+    outboxBytes_ -= it->bytes.size();
+    it = outbox_.erase(it);
+  }
 }
 
 void WebSocketSession::write() {

@@ -38,6 +38,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   void onRead(boost::beast::error_code ec, std::size_t bytes);
   // On the strand. A new frame replaces frames still waiting (not the one being written).
   void queue(std::string bytes, bool binary);
+  void dropWaitingFrames();
   void write();
   void onWrite(boost::beast::error_code ec, std::size_t bytes);
 
