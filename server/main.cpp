@@ -40,6 +40,13 @@ int main(int argc, char** argv) {
                        "With --phantom or --case: a JSON file {fragment: {translation_mm, rotation_deg, center_mm}} "
                        "solved instead of the case's plan")->check(CLI::ExistingFile);
   benchCmd->add_option("--variant", caseBench.phantomVariant, "Phantom variant for --phantom")->check(CLI::Range(0, 100));
+  bool benchLatency = false;
+  orthosim::cli::LatencyBenchOptions latency;
+  latency.webDir = ORTHOSIM_WEB_DIR;
+  benchCmd->add_flag("--latency", benchLatency,
+                     "Time coarse previews through the planning server (WebSocket round trips on the phantom)");
+  benchCmd->add_option("--changes", latency.changes, "Pose changes for --latency")->check(CLI::Range(1, 10000));
+  benchCmd->add_option("--data", latency.dataDir, "Data folder for --latency (phantom and mesh cache, reused)");
 
   bool benchRender = false;
   orthosim::cli::RenderBenchOptions renderBench;
@@ -91,6 +98,17 @@ int main(int argc, char** argv) {
   serve->add_option("--host", serveOptions.host, "Address to bind (default 127.0.0.1: this machine only)");
   serve->add_option("--port", serveOptions.port, "TCP port; 0 picks a free one")->check(CLI::Range(0, 65535));
   serve->add_option("--web", serveOptions.webDir, "Folder of the browser page (default: the source tree's web/)");
+  serve->add_option("--data", serveOptions.dataDir,
+                    "Folder for built cases, the mesh cache and saved plans (default: $ORTHOSIM_DATA, else "
+                    "~/.local/share/orthosim)");
+  serve->add_option("--cases", serveOptions.casesDir, "Folder of case folders (DIR/<id>/case.json) to serve besides the phantom");
+  serve->add_option("--token", serveOptions.token, "Access token required on /api and /ws (default: $ORTHOSIM_TOKEN)");
+  serve->add_option("--allow-origin", serveOptions.allowedOrigins,
+                    "Origin (e.g. http://planning.example:8080) whose pages may open the WebSocket; '*' allows any");
+  serve->add_option("--allow-host", serveOptions.allowedHosts, "Host name clients may use besides localhost and the bound address");
+  serve->add_option("--fine-workers", serveOptions.fineWorkers, "Fine jobs run at once")->check(CLI::Range(1, 16));
+  serve->add_option("--max-sessions", serveOptions.maxSessions, "Planning sessions open at once")->check(CLI::Range(1, 1024));
+  serve->add_flag("!--no-warm-up", serveOptions.warmUp, "Do not build the phantom's coarse model at start");
 
   try {
     app.parse(argc, argv);
@@ -105,6 +123,11 @@ int main(int argc, char** argv) {
       return orthosim::cli::runSolve(scene, out, solveOptions);
     }
     if (*demo) return orthosim::cli::runDemo(demoOut);
+    if (*benchCmd && benchLatency) {
+      latency.phantomVariant = caseBench.phantomVariant;
+      latency.jsonPath = bench.jsonPath;
+      return orthosim::cli::runLatencyBench(latency);
+    }
     if (*benchCmd && benchRender) {
       renderBench.repeats = bench.repeats == 5 ? 3 : bench.repeats;
       renderBench.jsonPath = bench.jsonPath;

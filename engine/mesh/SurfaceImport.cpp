@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -174,12 +175,17 @@ SurfaceMesh importSurface(const std::string& path) {
   return out;
 }
 
-void exportSurface(const SurfaceMesh& mesh, const std::string& path, SurfaceEncoding encoding) {
-  const Format format = formatOf(path);
+namespace {
+
+const char* exporterId(Format format, SurfaceEncoding encoding) {
   const bool binary = encoding == SurfaceEncoding::Binary;
-  const char* id = format == Format::Stl ? (binary ? "stlb" : "stl")
-                   : format == Format::Ply ? (binary ? "plyb" : "ply")
-                                           : "objnomtl";  // no .mtl beside it
+  return format == Format::Stl   ? (binary ? "stlb" : "stl")
+         : format == Format::Ply ? (binary ? "plyb" : "ply")
+                                 : "objnomtl";  // no .mtl beside it
+}
+
+// The mesh as an assimp scene for `format`; `path` names the target in errors.
+std::unique_ptr<aiScene> exportScene(const SurfaceMesh& mesh, Format format, const std::string& path) {
   if (mesh.numTriangles() == 0) throw std::runtime_error(path + ": cannot export: no triangles");
   if (mesh.hasUv() && mesh.uv.cols() != mesh.vertices.cols())
     throw std::runtime_error(path + ": cannot export: " + std::to_string(mesh.uv.cols()) +
@@ -245,9 +251,27 @@ void exportSurface(const SurfaceMesh& mesh, const std::string& path, SurfaceEnco
     }
   }
 
+  return scene;
+}
+
+}  // namespace
+
+void exportSurface(const SurfaceMesh& mesh, const std::string& path, SurfaceEncoding encoding) {
+  const Format format = formatOf(path);
+  const std::unique_ptr<aiScene> scene = exportScene(mesh, format, path);
   Assimp::Exporter exporter;
-  if (exporter.Export(scene.get(), id, path) != AI_SUCCESS)
+  if (exporter.Export(scene.get(), exporterId(format, encoding), path) != AI_SUCCESS)
     throw std::runtime_error(path + ": cannot write: " + exporter.GetErrorString());
+}
+
+std::string exportSurfaceBytes(const SurfaceMesh& mesh, const std::string& extension, SurfaceEncoding encoding) {
+  const std::string name = "surface." + extension;
+  const Format format = formatOf(name);
+  const std::unique_ptr<aiScene> scene = exportScene(mesh, format, name);
+  Assimp::Exporter exporter;
+  const aiExportDataBlob* blob = exporter.ExportToBlob(scene.get(), exporterId(format, encoding));
+  if (!blob) throw std::runtime_error(name + ": cannot export: " + exporter.GetErrorString());
+  return std::string(static_cast<const char*>(blob->data), blob->size);
 }
 
 }  // namespace orthosim

@@ -25,4 +25,9 @@ enum class SurfaceEncoding { Binary, Ascii };  // OBJ is always ASCII
 void exportSurface(const SurfaceMesh& mesh, const std::string& path,
                    SurfaceEncoding encoding = SurfaceEncoding::Binary);
 
+// The same file's bytes in memory (a download): `extension` is "stl", "obj" or "ply" (any case).
+// Throws std::runtime_error for another extension or an invalid mesh.
+std::string exportSurfaceBytes(const SurfaceMesh& mesh, const std::string& extension,
+                               SurfaceEncoding encoding = SurfaceEncoding::Binary);
+
 }  // namespace orthosim

@@ -1,13 +1,45 @@
 #include "cases/CaseCatalog.hpp"
 
+#include <algorithm>
+
 #include "phantom/Phantom.hpp"
+#include "scene/CaseFile.hpp"
+#include "session/MessageReader.hpp"
 
 namespace orthosim::server {
+namespace fs = std::filesystem;
 
 std::vector<CaseEntry> builtInCases() {
   std::vector<CaseEntry> cases;
   for (const PhantomVariant& v : phantomVariants())
-    cases.push_back({"phantom-" + std::to_string(v.index), v.name, v.description, "phantom", v.index});
+    cases.push_back({"phantom-" + std::to_string(v.index), v.name, v.description, "phantom", v.index, {}});
+  return cases;
+}
+
+std::vector<CaseEntry> folderCases(const fs::path& dir, std::vector<std::string>* skipped) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw std::runtime_error("cases folder " + dir.string() + " is not a folder");
+  std::vector<CaseEntry> cases;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    const std::string id = e.path().filename().string();
+    const fs::path file = e.path() / "case.json";
+    if (!e.is_directory() || !fs::is_regular_file(file)) continue;
+    auto skip = [&](const std::string& why) {
+      if (skipped) skipped->push_back(e.path().string() + ": " + why);
+    };
+    if (!isIdentifier(id)) {
+      skip("folder name is not an identifier (letters, digits, '_' and '-')");
+      continue;
+    }
+    try {
+      const CaseSpec spec = loadCaseFile(file.string());  // a broken case is reported now, not at open
+      cases.push_back({id, spec.name.empty() ? id : spec.name, "case folder " + id, "folder", -1, fs::absolute(file)});
+    } catch (const std::exception& ex) {
+      skip(ex.what());
+    }
+  }
+  if (ec) throw std::runtime_error("cannot read cases folder " + dir.string() + ": " + ec.message());
+  std::sort(cases.begin(), cases.end(), [](const CaseEntry& a, const CaseEntry& b) { return a.id < b.id; });
   return cases;
 }
 

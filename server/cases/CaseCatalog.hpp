@@ -1,6 +1,7 @@
 #pragma once
-// The cases a client can open. For now the built-in phantom's variants; cases read from a
-// folder (`serve --cases DIR`) join this list later.
+// The cases a client can open: the built-in phantom's variants, and the case folders of
+// `serve --cases DIR` (each DIR/<id>/case.json, docs/scene-format.md).
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -11,12 +12,18 @@ struct CaseEntry {
   std::string id;           // stable identifier a client names the case by, e.g. "phantom-0"
   std::string name;         // short name, e.g. "class-I"
   std::string description;  // for a human
-  std::string source;       // where it comes from: "phantom"
+  std::string source;       // where it comes from: "phantom" or "folder"
   int phantomVariant = -1;  // for source "phantom"
+  std::filesystem::path caseFile;  // for source "folder": DIR/<id>/case.json
 };
 
 // The phantom's variants, in variant order (see phantom/Phantom.hpp).
 std::vector<CaseEntry> builtInCases();
+
+// Every DIR/<id>/case.json whose <id> is a valid identifier, sorted by id. Folders that are not
+// cases (no case.json, bad name, unreadable or invalid case file) are left out with a line in
+// `skipped` saying why. Throws std::runtime_error when DIR is not a readable folder.
+std::vector<CaseEntry> folderCases(const std::filesystem::path& dir, std::vector<std::string>* skipped = nullptr);
 
 // {"cases": [{"id", "name", "description", "source", "variant"?}, ...]} (docs/protocol.md).
 nlohmann::json casesJson(const std::vector<CaseEntry>& cases);

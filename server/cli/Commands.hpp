@@ -35,6 +35,16 @@ struct CaseBenchOptions {
 };
 int runCaseBench(const CaseBenchOptions& options);
 
+struct LatencyBenchOptions {
+  int changes = 50;
+  int phantomVariant = 0;
+  std::string dataDir = "orthosim-bench-data";  // built phantom and mesh cache (reused between runs)
+  std::string webDir;
+  std::string jsonPath;
+};
+// Round-trip latency of coarse previews through the planning server (bench --latency).
+int runLatencyBench(const LatencyBenchOptions& options);
+
 struct RenderCommandOptions {
   std::string planPath;          // plan file replacing the case's plan; empty: the case's plan
   std::string view = "profile";  // a clinical view (render/ClinicalView.hpp)
@@ -70,6 +80,13 @@ struct ServeOptions {
   std::string host = "127.0.0.1";
   int port = 8080;     // 0: any free port; the chosen one is printed as "listening on http://HOST:PORT"
   std::string webDir;  // the browser page folder
+  std::string dataDir;   // empty: $ORTHOSIM_DATA, else $XDG_DATA_HOME/orthosim, else ~/.local/share/orthosim
+  std::string casesDir;  // case folders besides the phantom (optional)
+  std::string token;     // empty: $ORTHOSIM_TOKEN if set
+  std::vector<std::string> allowedOrigins, allowedHosts;
+  bool warmUp = true;    // build the phantom's coarse model at start
+  int fineWorkers = 1;
+  int maxSessions = 32;
 };
 // Serves HTTP (and later the WebSocket API) until SIGINT or SIGTERM; 0 on a clean stop, 1 when
 // the server cannot start (bad host, port taken, no web folder).

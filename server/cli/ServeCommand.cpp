@@ -1,22 +1,62 @@
-// `orthosim serve`: the planning server (HTTP for now; the WebSocket API follows, issue 5).
+// `orthosim serve`: the planning server (HTTP, the /ws WebSocket API, fine jobs).
 #include <csignal>
+#include <cstdlib>
 #include <iostream>
 
 #include "cli/Commands.hpp"
 #include "net/Server.hpp"
 
 namespace orthosim::cli {
+namespace fs = std::filesystem;
+namespace {
 
-int runServe(const ServeOptions& options) {
+fs::path defaultDataDir() {
+  if (const char* d = std::getenv("ORTHOSIM_DATA"); d && *d) return d;
+  if (const char* x = std::getenv("XDG_DATA_HOME"); x && *x) return fs::path(x) / "orthosim";
+  if (const char* h = std::getenv("HOME"); h && *h) return fs::path(h) / ".local" / "share" / "orthosim";
+  return fs::current_path() / "orthosim-data";
+}
+
+net::ServerOptions serverOptions(const ServeOptions& options) {
   net::ServerOptions server;
   server.host = options.host;
-  server.port = options.port;
+  server.port = static_cast<unsigned short>(options.port);
   server.webDir = options.webDir;
+  server.access.token = options.token;
+  if (server.access.token.empty())
+    if (const char* t = std::getenv("ORTHOSIM_TOKEN")) server.access.token = t;
+  server.access.allowedOrigins = options.allowedOrigins;
+  server.access.allowedHosts = options.allowedHosts;
+  server.planning.dataDir = fs::absolute(options.dataDir.empty() ? defaultDataDir() : fs::path(options.dataDir));
+  fs::create_directories(server.planning.dataDir);
+  server.planning.cases = server::builtInCases();
+  if (!options.casesDir.empty()) {
+    std::vector<std::string> skipped;
+    for (server::CaseEntry& c : server::folderCases(options.casesDir, &skipped)) {
+      if (c.id.rfind("phantom-", 0) == 0) {
+        std::cerr << "orthosim serve: case folder " << c.id << " skipped: the name is the built-in phantom's\n";
+        continue;
+      }
+      server.planning.cases.push_back(std::move(c));
+    }
+    for (const std::string& s : skipped) std::cerr << "orthosim serve: skipped " << s << "\n";
+  }
+  server.planning.fineWorkers = options.fineWorkers;
+  server.planning.maxSessions = options.maxSessions;
+  if (options.warmUp) server.warmUpCase = "phantom-0";
+  return server;
+}
+
+}  // namespace
+
+int runServe(const ServeOptions& options) {
   try {
+    const net::ServerOptions server = serverOptions(options);
     net::Server running(server);
     // Tests and scripts read the port from this line (port 0 picks a free one): keep its form.
     std::cout << "listening on http://" << running.host() << ":" << running.port() << std::endl;
-    std::cerr << "orthosim serve: web page from " << server.webDir.string() << "\n";
+    std::cerr << "orthosim serve: web page from " << server.webDir.string() << ", data in "
+              << server.planning.dataDir.string() << (server.access.token.empty() ? "" : ", token required") << "\n";
     const int signal = running.runUntilSignal();
     std::cerr << "orthosim serve: stopped by " << (signal == SIGINT ? "SIGINT" : "SIGTERM") << "\n";
     return 0;

@@ -1,23 +1,24 @@
 #pragma once
-// The HTTP API under /api: read-only facts about the server. Everything that changes state
-// goes over the WebSocket (/ws, later).
-#include <nlohmann/json.hpp>
+// The HTTP API under /api: facts about the server (health, cases) and downloads of exported
+// files. Everything that changes state goes over the WebSocket (/ws).
 #include <optional>
 #include <string_view>
 
-#include "cases/CaseCatalog.hpp"
+#include "net/HttpMessages.hpp"
+#include "session/PlanningService.hpp"
 
 namespace orthosim::net {
 
 class ApiRoutes {
  public:
-  explicit ApiRoutes(std::vector<server::CaseEntry> cases);
+  explicit ApiRoutes(server::PlanningService& service);
 
-  // The JSON body of GET `path`, or nullopt when no API route has that path.
-  std::optional<nlohmann::json> get(std::string_view path) const;
+  // The reply to GET `path`, or nullopt when no API route has that path.
+  std::optional<Response> get(std::string_view path, const ReplyTo& to) const;
 
  private:
-  nlohmann::json health_, cases_;  // fixed for the server's lifetime: built once
+  server::PlanningService& service_;
+  nlohmann::json cases_;  // fixed for the server's lifetime: built once
 };
 
 }  // namespace orthosim::net

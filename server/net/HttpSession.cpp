@@ -6,6 +6,7 @@
 
 namespace orthosim::net {
 namespace beast = boost::beast;
+namespace websocket = beast::websocket;
 namespace {
 
 constexpr std::size_t kMaxDrainBytes = 1024 * 1024;
@@ -28,9 +29,8 @@ std::optional<StringResponse> parseErrorReply(beast::error_code ec, const HttpLi
 
 }  // namespace
 
-HttpSession::HttpSession(boost::asio::ip::tcp::socket&& socket, std::shared_ptr<const Router> router,
-                         const HttpLimits& limits)
-    : stream_(std::move(socket)), router_(std::move(router)), limits_(limits) {}
+HttpSession::HttpSession(boost::asio::ip::tcp::socket&& socket, std::shared_ptr<const ConnectionContext> context)
+    : stream_(std::move(socket)), context_(std::move(context)), limits_(context_->limits) {}
 
 void HttpSession::start() {
   // The socket was accepted on this session's strand; run on it from the start.
@@ -55,10 +55,23 @@ void HttpSession::onRead(beast::error_code ec, std::size_t) {
     if (std::optional<StringResponse> reply = parseErrorReply(ec, limits_)) send(std::move(*reply), true);
     return;  // otherwise the session ends here and its socket closes
   }
-  // Later: a WebSocket upgrade to /ws hands the stream and parser_->release() to a WebSocket session.
-  Response response = router_->handle(parser_->get());
+  if (websocket::is_upgrade(parser_->get())) return upgrade();
+  Response response = context_->router->handle(parser_->get());
   const bool closeAfter = std::visit([](const auto& r) { return r.need_eof(); }, response);
   send(std::move(response), closeAfter);
+}
+
+void HttpSession::upgrade() {
+  if (std::optional<StringResponse> refusal = context_->router->refuseUpgrade(parser_->get()))
+    return send(std::move(*refusal), true);
+  if (!context_->planning->tryEnter()) {
+    const ReplyTo to{parser_->get().version(), false, false};
+    return send(jsonError(http::status::service_unavailable, "too_many_sessions",
+                          "the server has as many planning sessions open as it allows; try again later", "/ws", to),
+                true);
+  }
+  std::make_shared<WebSocketSession>(stream_.release_socket(), *context_->planning, context_->webSocket)
+      ->run(parser_->release());
 }
 
 void HttpSession::send(Response&& response, bool closeAfter) {

@@ -1,27 +1,28 @@
 #pragma once
 // One HTTP connection: reads a request, answers it through the Router, repeats while the client
 // keeps the connection alive. Requests over the size limits get 413 / 431 and the connection is
-// closed. (Modelled on Beast's advanced_server; its WebSocket upgrade hook goes into onRead.)
+// closed. A WebSocket upgrade to /ws hands the connection to a WebSocketSession. (Modelled on
+// Beast's advanced_server.)
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/beast/core.hpp>
 #include <memory>
 #include <optional>
 
-#include "net/HttpLimits.hpp"
+#include "net/ConnectionContext.hpp"
 #include "net/HttpMessages.hpp"
-#include "net/Router.hpp"
 
 namespace orthosim::net {
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
-  HttpSession(boost::asio::ip::tcp::socket&& socket, std::shared_ptr<const Router> router, const HttpLimits& limits);
+  HttpSession(boost::asio::ip::tcp::socket&& socket, std::shared_ptr<const ConnectionContext> context);
 
   void start();
 
  private:
   void readRequest();
   void onRead(boost::beast::error_code ec, std::size_t bytes);
+  void upgrade();
   void send(Response&& response, bool closeAfter);
   void onWrite(bool closeAfter, boost::beast::error_code ec, std::size_t bytes);
   // Half-closes, then reads and discards what the client still sends before closing: closing with
@@ -31,8 +32,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
 
   boost::beast::tcp_stream stream_;
   boost::beast::flat_buffer buffer_;
-  std::shared_ptr<const Router> router_;
-  HttpLimits limits_;
+  std::shared_ptr<const ConnectionContext> context_;
+  const HttpLimits& limits_;
   std::optional<http::request_parser<http::string_body>> parser_;  // a fresh one per request
   Response response_;  // kept alive until its write completes
   std::size_t drained_ = 0;

@@ -12,9 +12,9 @@ namespace orthosim::net {
 namespace beast = boost::beast;
 using boost::asio::ip::tcp;
 
-Listener::Listener(boost::asio::io_context& io, const tcp::endpoint& endpoint, std::shared_ptr<const Router> router,
-                   const HttpLimits& limits)
-    : io_(io), acceptor_(boost::asio::make_strand(io)), router_(std::move(router)), limits_(limits) {
+Listener::Listener(boost::asio::io_context& io, const tcp::endpoint& endpoint,
+                   std::shared_ptr<const ConnectionContext> context)
+    : io_(io), acceptor_(boost::asio::make_strand(io)), context_(std::move(context)) {
   beast::error_code ec;
   const auto check = [&](const char* step) {
     if (ec) {
@@ -45,7 +45,7 @@ void Listener::onAccept(beast::error_code ec, tcp::socket socket) {
   if (ec)
     std::cerr << "orthosim serve: accept failed: " << ec.message() << "\n";  // e.g. out of file descriptors
   else
-    std::make_shared<HttpSession>(std::move(socket), router_, limits_)->start();
+    std::make_shared<HttpSession>(std::move(socket), context_)->start();
   accept();
 }
 

@@ -4,8 +4,7 @@
 #include <boost/asio/ip/tcp.hpp>
 #include <memory>
 
-#include "net/HttpLimits.hpp"
-#include "net/Router.hpp"
+#include "net/ConnectionContext.hpp"
 
 namespace orthosim::net {
 
@@ -14,7 +13,7 @@ class Listener : public std::enable_shared_from_this<Listener> {
   // Opens, binds and listens; throws std::runtime_error naming the endpoint when it cannot
   // (port taken, address not local).
   Listener(boost::asio::io_context& io, const boost::asio::ip::tcp::endpoint& endpoint,
-           std::shared_ptr<const Router> router, const HttpLimits& limits);
+           std::shared_ptr<const ConnectionContext> context);
 
   // The bound endpoint, with the port the system chose when asked for port 0.
   boost::asio::ip::tcp::endpoint endpoint() const { return acceptor_.local_endpoint(); }
@@ -27,8 +26,7 @@ class Listener : public std::enable_shared_from_this<Listener> {
 
   boost::asio::io_context& io_;
   boost::asio::ip::tcp::acceptor acceptor_;
-  std::shared_ptr<const Router> router_;
-  HttpLimits limits_;
+  std::shared_ptr<const ConnectionContext> context_;
 };
 
 }  // namespace orthosim::net

@@ -16,9 +16,16 @@ StringResponse methodNotAllowed(const Request& request, std::string_view path, c
   return response;
 }
 
+StringResponse refusal(const Refusal& r, std::string_view path, const ReplyTo& to) {
+  StringResponse response = jsonError(r.status, r.code, r.message, path, to);
+  if (r.status == http::status::unauthorized) response.set(http::field::www_authenticate, "Bearer");
+  return response;
+}
+
 }  // namespace
 
-Router::Router(WebRoot web, ApiRoutes api) : web_(std::move(web)), api_(std::move(api)) {}
+Router::Router(WebRoot web, ApiRoutes api, AccessPolicy policy)
+    : web_(std::move(web)), api_(std::move(api)), policy_(std::move(policy)) {}
 
 Response Router::handle(const Request& request) const {
   const ReplyTo to = replyTo(request);
@@ -26,17 +33,35 @@ Response Router::handle(const Request& request) const {
   const std::optional<RequestTarget> target = parseRequestTarget(rawTarget);
   if (!target)
     return jsonError(http::status::bad_request, "bad_target", "malformed request target", rawTarget, to);
+  if (std::optional<Refusal> r = policy_.checkHost(request)) return refusal(*r, target->path, to);
 
   // Both the API and the page are read-only over HTTP: state changes go over the WebSocket.
   const bool readOnly = request.method() == http::verb::get || request.method() == http::verb::head;
   if (isApiPath(target->path)) {
-    std::optional<nlohmann::json> body = api_.get(target->path);
-    if (!body) return jsonError(http::status::not_found, "not_found", "no API route " + target->path, target->path, to);
+    if (std::optional<Refusal> r = policy_.checkToken(request, *target)) return refusal(*r, target->path, to);
+    std::optional<Response> reply = api_.get(target->path, to);
+    if (!reply) return jsonError(http::status::not_found, "not_found", "no API route " + target->path, target->path, to);
     if (!readOnly) return methodNotAllowed(request, target->path, to);
-    return jsonResponse(http::status::ok, *body, to);
+    return std::move(*reply);
   }
+  if (target->path == "/ws")
+    return jsonError(http::status::upgrade_required, "upgrade_required", "/ws is the WebSocket API: open it as a WebSocket",
+                     target->path, to);
   if (!readOnly) return methodNotAllowed(request, target->path, to);
   return serveStaticFile(web_, target->path, to);
+}
+
+std::optional<StringResponse> Router::refuseUpgrade(const Request& request) const {
+  const ReplyTo to{request.version(), false, false};
+  const std::string_view rawTarget(request.target().data(), request.target().size());
+  const std::optional<RequestTarget> target = parseRequestTarget(rawTarget);
+  if (!target) return jsonError(http::status::bad_request, "bad_target", "malformed request target", rawTarget, to);
+  if (target->path != "/ws")
+    return jsonError(http::status::not_found, "not_found", "WebSocket upgrades are served on /ws only", target->path, to);
+  for (auto check : {&AccessPolicy::checkHost, &AccessPolicy::checkOrigin})
+    if (std::optional<Refusal> r = (policy_.*check)(request)) return refusal(*r, target->path, to);
+  if (std::optional<Refusal> r = policy_.checkToken(request, *target)) return refusal(*r, target->path, to);
+  return std::nullopt;
 }
 
 }  // namespace orthosim::net

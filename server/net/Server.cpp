@@ -2,6 +2,7 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/post.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <algorithm>
 #include <csignal>
@@ -9,7 +10,6 @@
 #include <thread>
 #include <vector>
 
-#include "cases/CaseCatalog.hpp"
 #include "net/Listener.hpp"
 #include "net/Router.hpp"
 
@@ -18,12 +18,13 @@ using boost::asio::ip::tcp;
 
 struct Server::Impl {
   ServerOptions options;
+  server::PlanningService planning;  // declared first: outlives the sessions the io_context holds
   boost::asio::io_context io;
   boost::asio::signal_set signals{io, SIGINT, SIGTERM};
   std::shared_ptr<Listener> listener;
   int stopSignal = 0;
 
-  explicit Impl(const ServerOptions& o) : options(o), io(std::max(1, o.networkThreads)) {}
+  explicit Impl(const ServerOptions& o) : options(o), planning(o.planning), io(std::max(1, o.networkThreads)) {}
 };
 
 namespace {
@@ -40,10 +41,20 @@ tcp::endpoint resolveEndpoint(boost::asio::io_context& io, const std::string& ho
 }  // namespace
 
 Server::Server(const ServerOptions& options) : impl_(std::make_unique<Impl>(options)) {
-  auto router = std::make_shared<const Router>(WebRoot(options.webDir), ApiRoutes(server::builtInCases()));
-  impl_->listener = std::make_shared<Listener>(impl_->io, resolveEndpoint(impl_->io, options.host, options.port),
-                                               std::move(router), options.limits);
+  const tcp::endpoint endpoint = resolveEndpoint(impl_->io, options.host, options.port);
+  AccessOptions access = options.access;
+  access.anyHost = access.anyHost || endpoint.address().is_unspecified();
+  const std::string bound = endpoint.address().is_v6() ? "[" + endpoint.address().to_string() + "]"
+                                                       : endpoint.address().to_string();
+  auto context = std::make_shared<ConnectionContext>();
+  context->router = std::make_shared<const Router>(WebRoot(options.webDir), ApiRoutes(impl_->planning),
+                                                   AccessPolicy(access, bound));
+  context->planning = &impl_->planning;
+  context->limits = options.limits;
+  context->webSocket = options.webSocket;
+  impl_->listener = std::make_shared<Listener>(impl_->io, endpoint, std::move(context));
   impl_->listener->start();
+  if (!options.warmUpCase.empty()) impl_->planning.warmUp(options.warmUpCase);
   impl_->signals.async_wait([impl = impl_.get()](const boost::system::error_code& ec, int signal) {
     if (ec) return;
     impl->stopSignal = signal;
@@ -60,11 +71,16 @@ std::string Server::host() const {
 
 unsigned short Server::port() const { return impl_->listener->endpoint().port(); }
 
+void Server::stop() {
+  boost::asio::post(impl_->io, [impl = impl_.get()] { impl->io.stop(); });
+}
+
 int Server::runUntilSignal() {
   std::vector<std::thread> threads;
   for (int i = 1; i < impl_->options.networkThreads; ++i) threads.emplace_back([this] { impl_->io.run(); });
   impl_->io.run();  // the calling thread is the first network thread
   for (std::thread& t : threads) t.join();
+  impl_->planning.shutdown();  // cancels fine jobs; saved plans were written whole when saved
   return impl_->stopSignal;
 }
 

@@ -1,12 +1,15 @@
 #pragma once
 // The planning server: one io_context served by a small pool of network threads, the HTTP
-// listener, and SIGINT/SIGTERM handling. Network threads only parse, route and write; solves
-// will run on worker threads of their own (issue 5), never here.
+// listener, the planning service, and SIGINT/SIGTERM handling. Network threads only parse, route
+// and write; solves run on the planning service's threads, never here.
 #include <filesystem>
 #include <memory>
 #include <string>
 
+#include "net/AccessPolicy.hpp"
 #include "net/HttpLimits.hpp"
+#include "net/WebSocketSession.hpp"
+#include "session/PlanningService.hpp"
 
 namespace orthosim::net {
 
@@ -16,6 +19,10 @@ struct ServerOptions {
   std::filesystem::path webDir;    // the browser page; nothing outside it is served
   int networkThreads = 2;
   HttpLimits limits;
+  WebSocketLimits webSocket;
+  AccessOptions access;             // token, allowed origins and hosts
+  server::PlanningOptions planning;  // data folder, cases, workers
+  std::string warmUpCase;           // built in the background at start (empty: none)
 };
 
 class Server {
@@ -32,6 +39,8 @@ class Server {
   // Serves until SIGINT or SIGTERM; returns the signal number once every network thread has
   // stopped. Connections still open are closed when the Server is destroyed.
   int runUntilSignal();
+  // Makes runUntilSignal return (0) from another thread, as a signal would.
+  void stop();
 
  private:
   struct Impl;

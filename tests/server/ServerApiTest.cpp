@@ -71,8 +71,8 @@ TEST(ServerApi, OnlyGetAndHeadAreAllowed) {
 
 TEST(ServerApi, KeepAliveServesSeveralRequestsOnOneConnection) {
   test::ServerProcess server;
-  const std::string request = "GET /api/health HTTP/1.1\r\nHost: x\r\n\r\n";
-  const std::string last = "GET /api/cases HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n";
+  const std::string request = "GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
+  const std::string last = "GET /api/cases HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n";
   // Three pipelined requests on one connection, answered in order; the last one closes it.
   const std::vector<test::HttpReply> replies = test::httpRaw(server.port(), request + request + last);
   ASSERT_EQ(replies.size(), 3u);

@@ -7,14 +7,21 @@
 
 #include <csignal>
 #include <stdexcept>
+#include <algorithm>
 #include <thread>
 
 extern char** environ;
 
 namespace orthosim::test {
 
+std::string testDataDir() { return ORTHOSIM_TEST_DATA; }
+
 ServerProcess::ServerProcess(const std::vector<std::string>& extraArgs) {
   std::vector<std::string> args{ORTHOSIM_CLI, "serve", "--port", "0"};
+  // Unless a test chooses its own, every server shares one data folder in the build tree (the
+  // phantom's meshes are then built once per build) and builds nothing at start.
+  if (std::find(extraArgs.begin(), extraArgs.end(), "--data") == extraArgs.end())
+    args.insert(args.end(), {"--data", testDataDir(), "--no-warm-up"});
   args.insert(args.end(), extraArgs.begin(), extraArgs.end());
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());

@@ -10,9 +10,12 @@
 
 namespace orthosim::test {
 
+// The data folder test servers share (built cases, mesh cache, saved plans).
+std::string testDataDir();
+
 class ServerProcess {
  public:
-  // Starts ORTHOSIM_CLI serve --port 0 <extraArgs>; throws std::runtime_error when the server
+  // Starts ORTHOSIM_CLI serve --port 0 [--data testDataDir() --no-warm-up] <extraArgs>; throws std::runtime_error when the server
   // does not print "listening on http://HOST:PORT" within 30 s.
   explicit ServerProcess(const std::vector<std::string>& extraArgs = {});
   ~ServerProcess();

@@ -22,8 +22,12 @@ TEST(ServerStaticFiles, ServesTheProjectIndexPage) {
     ASSERT_EQ(reply.result(), http::status::ok) << target;
     EXPECT_EQ(reply[http::field::content_type], "text/html; charset=utf-8");
     EXPECT_NE(reply.body().find("orthosim"), std::string::npos);
-    EXPECT_NE(reply.body().find("/api/health"), std::string::npos);
+    EXPECT_NE(reply.body().find("app.js"), std::string::npos);
   }
+  const test::HttpReply script = httpGet(server.port(), "/app.js");
+  ASSERT_EQ(script.result(), http::status::ok);
+  EXPECT_NE(script.body().find("/ws"), std::string::npos) << "the page talks to the WebSocket API";
+  EXPECT_EQ(httpGet(server.port(), "/style.css").result(), http::status::ok);
 }
 
 TEST(ServerStaticFiles, ContentTypesFollowTheExtension) {

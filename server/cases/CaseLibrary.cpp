@@ -1,0 +1,74 @@
+#include "cases/CaseLibrary.hpp"
+
+#include <stdexcept>
+
+#include "phantom/PhantomCase.hpp"
+
+namespace orthosim::server {
+namespace fs = std::filesystem;
+
+CaseLibrary::CaseLibrary(std::vector<CaseEntry> catalog, fs::path dataDir)
+    : catalog_(std::move(catalog)), dataDir_(std::move(dataDir)) {}
+
+const CaseEntry* CaseLibrary::find(const std::string& id) const {
+  for (const CaseEntry& c : catalog_)
+    if (c.id == id) return &c;
+  return nullptr;
+}
+
+std::string CaseLibrary::caseFile(const CaseEntry& entry) {
+  if (entry.source != "phantom") return entry.caseFile.string();
+  // Written once per data folder; the phantom is deterministic, so an existing one is reused.
+  const std::lock_guard<std::mutex> lock(phantomMutex_);
+  const fs::path dir = dataDir_ / "cases" / entry.id;
+  const fs::path file = dir / "case.json";
+  if (fs::is_regular_file(file)) return file.string();
+  const fs::path tmp = dataDir_ / "cases" / (entry.id + ".writing");
+  fs::remove_all(tmp);
+  writePhantomCase(entry.phantomVariant, tmp.string());
+  fs::rename(tmp, dir);  // a folder with case.json is always complete
+  return file.string();
+}
+
+std::shared_ptr<const CaseModel> CaseLibrary::build(const CaseEntry& entry, Resolution resolution) {
+  CaseTissueOptions options;
+  options.cacheDir = (dataDir_ / "cache").string();
+  return std::make_shared<const CaseModel>(buildCaseModel(loadCaseFile(caseFile(entry)), resolution, options));
+}
+
+std::shared_ptr<const CaseModel> CaseLibrary::model(const std::string& id, Resolution resolution) {
+  const CaseEntry* entry = find(id);
+  if (!entry) throw std::invalid_argument("unknown case '" + id + "'");
+  std::promise<std::shared_ptr<const CaseModel>> promise;
+  std::shared_future<std::shared_ptr<const CaseModel>> future;
+  bool builder = false;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    auto it = models_.find({id, resolution});
+    if (it == models_.end()) {
+      future = promise.get_future().share();
+      models_.emplace(std::make_pair(id, resolution), future);
+      builder = true;
+    } else {
+      future = it->second;
+    }
+  }
+  if (builder) {
+    try {
+      promise.set_value(build(*entry, resolution));
+    } catch (...) {
+      promise.set_exception(std::current_exception());
+      const std::lock_guard<std::mutex> lock(mutex_);
+      models_.erase({id, resolution});
+    }
+  }
+  return future.get();
+}
+
+bool CaseLibrary::isBuilt(const std::string& id, Resolution resolution) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  auto it = models_.find({id, resolution});
+  return it != models_.end() && it->second.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+}
+
+}  // namespace orthosim::server

@@ -1,0 +1,42 @@
+#pragma once
+// The cases the server has opened, built once per (case, resolution) and shared by every session:
+// a built CaseModel is immutable, each session solves on its own Model of it. Phantom cases are
+// written under the data folder the first time they are asked for; tissue meshes are cached there.
+#include <filesystem>
+#include <future>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "cases/CaseCatalog.hpp"
+#include "scene/CaseModel.hpp"
+
+namespace orthosim::server {
+
+class CaseLibrary {
+ public:
+  CaseLibrary(std::vector<CaseEntry> catalog, std::filesystem::path dataDir);
+
+  const std::vector<CaseEntry>& catalog() const { return catalog_; }
+  const CaseEntry* find(const std::string& id) const;
+
+  // Blocks until the model is built (or built by another caller); a failed build is not kept,
+  // so a later call tries again. Throws std::invalid_argument for an unknown id, otherwise what
+  // building throws (SceneError naming the case file and the defect).
+  std::shared_ptr<const CaseModel> model(const std::string& id, Resolution resolution);
+  bool isBuilt(const std::string& id, Resolution resolution) const;
+
+ private:
+  std::string caseFile(const CaseEntry& entry);
+  std::shared_ptr<const CaseModel> build(const CaseEntry& entry, Resolution resolution);
+
+  std::vector<CaseEntry> catalog_;
+  std::filesystem::path dataDir_;
+  mutable std::mutex mutex_;
+  std::mutex phantomMutex_;  // writing a phantom's files
+  std::map<std::pair<std::string, Resolution>, std::shared_future<std::shared_ptr<const CaseModel>>> models_;
+};
+
+}  // namespace orthosim::server

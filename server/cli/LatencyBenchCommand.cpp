@@ -1,0 +1,109 @@
+// `orthosim bench --latency`: what a clinician dragging a fragment waits for. Starts the planning
+// server in this process on a free port, opens the phantom over a real WebSocket, and times 50
+// pose changes from sending set_poses to receiving the preview, beside the solve's own time.
+#include <algorithm>
+#include <boost/asio/connect.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/websocket.hpp>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "cli/Commands.hpp"
+#include "net/Server.hpp"
+
+namespace orthosim::cli {
+namespace beast = boost::beast;
+namespace websocket = beast::websocket;
+using nlohmann::json;
+
+namespace {
+
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5))];
+}
+
+class BenchClient {
+ public:
+  explicit BenchClient(unsigned short port) : ws_(io_) {
+    beast::get_lowest_layer(ws_).connect({boost::asio::ip::make_address("127.0.0.1"), port});
+    ws_.handshake("127.0.0.1", "/ws");
+    ws_.text(true);
+  }
+  void send(const json& m) { ws_.write(boost::asio::buffer(m.dump())); }
+  json waitFor(const std::string& type) {
+    for (;;) {
+      beast::flat_buffer b;
+      ws_.read(b);
+      json m = json::parse(beast::buffers_to_string(b.data()));
+      if (m["type"] == type) return m;
+      if (m["type"] == "error" || m["type"] == "preview_failed") throw std::runtime_error(m.dump());
+    }
+  }
+
+ private:
+  boost::asio::io_context io_;
+  websocket::stream<beast::tcp_stream> ws_;
+};
+
+}  // namespace
+
+int runLatencyBench(const LatencyBenchOptions& options) {
+  net::ServerOptions so;
+  so.host = "127.0.0.1";
+  so.port = 0;
+  so.webDir = options.webDir;
+  so.planning.dataDir = std::filesystem::absolute(options.dataDir);
+  std::filesystem::create_directories(so.planning.dataDir);
+  so.planning.cases = server::builtInCases();
+  net::Server server(so);
+  std::thread serving([&] { server.runUntilSignal(); });
+  std::vector<double> roundTrip, solve;
+  int status = 0;
+  try {
+    BenchClient client(server.port());
+    const auto t0 = std::chrono::steady_clock::now();
+    client.send({{"type", "open"}, {"case", "phantom-" + std::to_string(options.phantomVariant)}});
+    const json opened = client.waitFor("opened");
+    std::cout << "opened " << opened["case"].get<std::string>() << " (coarse: " << opened["coarse"]["tetrahedra"]
+              << " tets, " << opened["coarse"]["boundary_triangles"] << " boundary triangles) in "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s\n";
+    // A drag: the maxilla forward in 0.2 mm steps up to 5 mm and back, each pose waited for.
+    for (int i = 0; i < options.changes; ++i) {
+      const int k = i % 50;
+      const double mm = 0.2 * (k < 25 ? k + 1 : 50 - k);
+      const auto s = std::chrono::steady_clock::now();
+      client.send({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", mm}}}}}});
+      const json preview = client.waitFor("preview");
+      roundTrip.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - s).count());
+      solve.push_back(preview["figures"]["solve_s"]);
+    }
+    std::cout << std::fixed << std::setprecision(3) << "preview latency over " << options.changes
+              << " pose changes (send -> preview received): median " << quantile(roundTrip, 0.5) << " s, p95 "
+              << quantile(roundTrip, 0.95) << " s, max " << quantile(roundTrip, 1.0) << " s\n"
+              << "solve time alone: median " << quantile(solve, 0.5) << " s, p95 " << quantile(solve, 0.95)
+              << " s  (target: median latency < 1 s)\n";
+    if (!options.jsonPath.empty()) {
+      std::ofstream(options.jsonPath) << json{{"changes", options.changes},
+                                              {"latency_s", {{"median", quantile(roundTrip, 0.5)}, {"p95", quantile(roundTrip, 0.95)}}},
+                                              {"solve_s", {{"median", quantile(solve, 0.5)}, {"p95", quantile(solve, 0.95)}}},
+                                              {"round_trips_s", roundTrip}}
+                                             .dump(2)
+                                      << "\n";
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "orthosim bench --latency: " << e.what() << "\n";
+    status = 1;
+  }
+  server.stop();
+  serving.join();
+  return status;
+}
+
+}  // namespace orthosim::cli

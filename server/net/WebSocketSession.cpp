@@ -1,0 +1,104 @@
+#include "net/WebSocketSession.hpp"
+
+#include <boost/asio/post.hpp>
+#include <iostream>
+
+namespace orthosim::net {
+namespace beast = boost::beast;
+namespace websocket = beast::websocket;
+
+WebSocketSession::WebSocketSession(boost::asio::ip::tcp::socket&& socket, server::PlanningService& service,
+                                   const WebSocketLimits& limits)
+    : ws_(std::move(socket)), service_(service), limits_(limits) {}
+
+WebSocketSession::~WebSocketSession() {
+  if (planning_) planning_->close();
+  service_.leave();
+}
+
+void WebSocketSession::run(Request request) {
+  beast::get_lowest_layer(ws_).expires_never();  // the WebSocket's own timeouts take over
+  ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+  ws_.set_option(websocket::stream_base::decorator(
+      [](websocket::response_type& res) { res.set(http::field::server, "orthosim/" ORTHOSIM_VERSION); }));
+  ws_.read_message_max(limits_.hardMessageBytes);
+  ws_.async_accept(request, beast::bind_front_handler(&WebSocketSession::onAccept, shared_from_this()));
+}
+
+void WebSocketSession::onAccept(beast::error_code ec) {
+  if (ec) return;
+  std::weak_ptr<WebSocketSession> weak = shared_from_this();
+  // Replies come from solver threads: hop onto this connection's strand.
+  planning_ = std::make_shared<server::PlanningSession>(service_, [weak](const std::string& text) {
+    if (auto self = weak.lock())
+      boost::asio::post(self->ws_.get_executor(), [self, text] { self->queue(text); });
+  });
+  planning_->start();
+  read();
+}
+
+void WebSocketSession::read() {
+  ws_.async_read_some(buffer_, 16 * 1024, beast::bind_front_handler(&WebSocketSession::onRead, shared_from_this()));
+}
+
+void WebSocketSession::onRead(beast::error_code ec, std::size_t bytes) {
+  if (ec) {  // closed, timed out, over the hard limit, or a protocol violation
+    planning_->close();
+    return;
+  }
+  messageBytes_ += bytes;
+  if (!discarding_) {
+    message_ += beast::buffers_to_string(buffer_.data());
+    if (message_.size() > limits_.messageBytes) {
+      discarding_ = true;
+      message_.clear();
+      message_.shrink_to_fit();
+    }
+  }
+  buffer_.consume(buffer_.size());
+  if (ws_.is_message_done()) {
+    try {
+      if (discarding_)
+        planning_->refuseOversized(messageBytes_, limits_.messageBytes);
+      else if (ws_.got_binary())
+        planning_->refuseBinary();
+      else
+        planning_->handle(message_);
+    } catch (const std::exception& e) {
+      // handle() answers every bad message itself; this only keeps a bug off the network thread.
+      std::cerr << "orthosim serve: session " << planning_->id() << ": " << e.what() << "\n";
+    }
+    message_.clear();
+    messageBytes_ = 0;
+    discarding_ = false;
+  }
+  read();
+}
+
+void WebSocketSession::queue(std::string text) {
+  if (closing_) return;
+  outboxBytes_ += text.size();
+  outbox_.push_back(std::move(text));
+  if (outboxBytes_ > limits_.outboxBytes) {  // the client does not read: let it go
+    closing_ = true;
+    planning_->close();
+    beast::get_lowest_layer(ws_).socket().close();
+    return;
+  }
+  if (outbox_.size() == 1) write();
+}
+
+void WebSocketSession::write() {
+  ws_.text(true);
+  ws_.async_write(boost::asio::buffer(outbox_.front()),
+                  beast::bind_front_handler(&WebSocketSession::onWrite, shared_from_this()));
+}
+
+void WebSocketSession::onWrite(beast::error_code ec, std::size_t) {
+  if (ec) return;
+  outboxBytes_ -= outbox_.front().size();
+  outbox_.pop_front();
+  if (!outbox_.empty()) write();
+}
+
+}  // namespace orthosim::net

@@ -1,0 +1,56 @@
+#pragma once
+// One WebSocket connection to /ws: reads client text messages one at a time and hands them to its
+// PlanningSession; writes the session's replies in order. Memory per connection is bounded: a
+// message over the limit is read and discarded (the session then gets an error and carries on),
+// and a client that stops reading its replies is disconnected.
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/websocket.hpp>
+#include <deque>
+#include <memory>
+#include <string>
+
+#include "net/HttpMessages.hpp"
+#include "session/PlanningService.hpp"
+#include "session/PlanningSession.hpp"
+
+namespace orthosim::net {
+
+struct WebSocketLimits {
+  std::size_t messageBytes = 64 * 1024;        // larger client messages are refused (and skipped)
+  std::size_t hardMessageBytes = 16u << 20;    // larger ones close the connection (1009)
+  std::size_t outboxBytes = 64u << 20;         // replies a client may leave unread
+};
+
+class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
+ public:
+  // The caller has taken a session slot (PlanningService::tryEnter); this gives it back.
+  WebSocketSession(boost::asio::ip::tcp::socket&& socket, server::PlanningService& service,
+                   const WebSocketLimits& limits);
+  ~WebSocketSession();
+
+  // Completes the upgrade `request` asked for, then serves the connection.
+  void run(Request request);
+
+ private:
+  void onAccept(boost::beast::error_code ec);
+  void read();
+  void onRead(boost::beast::error_code ec, std::size_t bytes);
+  void queue(std::string text);  // on the strand
+  void write();
+  void onWrite(boost::beast::error_code ec, std::size_t bytes);
+
+  boost::beast::websocket::stream<boost::beast::tcp_stream> ws_;
+  server::PlanningService& service_;
+  WebSocketLimits limits_;
+  boost::beast::flat_buffer buffer_;
+  std::string message_;
+  std::size_t messageBytes_ = 0;
+  bool discarding_ = false;
+  std::deque<std::string> outbox_;
+  std::size_t outboxBytes_ = 0;
+  bool closing_ = false;
+  std::shared_ptr<server::PlanningSession> planning_;
+};
+
+}  // namespace orthosim::net

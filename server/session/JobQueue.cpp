@@ -1,0 +1,113 @@
+#include "session/JobQueue.hpp"
+
+#include <algorithm>
+
+namespace orthosim::server {
+
+JobQueue::JobQueue(int workers, int capacity) : capacity_(capacity) {
+  for (int i = 0; i < std::max(1, workers); ++i) workers_.emplace_back([this] { work(); });
+}
+
+JobQueue::~JobQueue() { shutdown(); }
+
+std::optional<long long> JobQueue::submit(const std::string& owner, Run run, Dropped dropped) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (stopping_ || static_cast<int>(queue_.size()) >= capacity_) return std::nullopt;
+  const long long id = nextId_++;
+  queue_.push_back({id, owner, std::move(run), std::move(dropped), std::make_shared<std::atomic<bool>>(false)});
+  wake_.notify_one();
+  return id;
+}
+
+bool JobQueue::cancel(const std::string& owner, long long id) {
+  Dropped dropped;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (Job* j : active_)
+      if (j->id == id && j->owner == owner) {
+        j->cancel->store(true);
+        return true;
+      }
+    auto it = std::find_if(queue_.begin(), queue_.end(), [&](const Job& j) { return j.id == id && j.owner == owner; });
+    if (it == queue_.end()) return false;
+    dropped = std::move(it->dropped);
+    queue_.erase(it);
+  }
+  if (dropped) dropped();  // outside the lock: it sends a message
+  return true;
+}
+
+void JobQueue::cancelOwner(const std::string& owner) {
+  std::vector<Dropped> dropped;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (Job* j : active_)
+      if (j->owner == owner) j->cancel->store(true);
+    for (auto it = queue_.begin(); it != queue_.end();)
+      if (it->owner == owner) {
+        dropped.push_back(std::move(it->dropped));
+        it = queue_.erase(it);
+      } else {
+        ++it;
+      }
+  }
+  for (Dropped& d : dropped)
+    if (d) d();
+}
+
+std::optional<int> JobQueue::position(long long id) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  for (size_t i = 0; i < queue_.size(); ++i)
+    if (queue_[i].id == id) return static_cast<int>(i);
+  return std::nullopt;
+}
+
+int JobQueue::running() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return static_cast<int>(active_.size());
+}
+
+int JobQueue::queued() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return static_cast<int>(queue_.size());
+}
+
+void JobQueue::shutdown() {
+  std::vector<Dropped> dropped;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (stopping_ && workers_.empty()) return;
+    stopping_ = true;
+    for (Job* j : active_) j->cancel->store(true);
+    for (Job& j : queue_) dropped.push_back(std::move(j.dropped));
+    queue_.clear();
+    wake_.notify_all();
+  }
+  for (Dropped& d : dropped)
+    if (d) d();
+  for (std::thread& t : workers_) t.join();
+  workers_.clear();
+}
+
+void JobQueue::work() {
+  for (;;) {
+    Job job;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      if (stopping_) return;
+      job = std::move(queue_.front());
+      queue_.pop_front();
+      active_.push_back(&job);
+    }
+    try {
+      job.run(*job.cancel);
+    } catch (...) {
+      // A job reports its own failure; the worker carries on.
+    }
+    const std::lock_guard<std::mutex> lock(mutex_);
+    active_.erase(std::find(active_.begin(), active_.end(), &job));
+  }
+}
+
+}  // namespace orthosim::server

@@ -1,0 +1,84 @@
+#include "session/MessageReader.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace orthosim::server {
+
+MessageReader::MessageReader(const nlohmann::json& j, std::string pointer) : j_(j), pointer_(std::move(pointer)) {
+  if (!j_.is_object()) fail("bad_value", "must be a JSON object");
+}
+
+void MessageReader::fail(const std::string& code, const std::string& what, const std::string& field) const {
+  const std::string where = field.empty() ? pointer_ : pointer_ + "/" + field;
+  throw ProtocolError(code, (where.empty() ? std::string("message") : where) + ": " + what, where);
+}
+
+bool MessageReader::has(const std::string& k) {
+  seen_.insert(k);
+  return j_.contains(k) && !j_.at(k).is_null();
+}
+
+const nlohmann::json& MessageReader::field(const std::string& k) {
+  if (!has(k)) fail("missing_field", "required field is missing", k);
+  return j_.at(k);
+}
+
+std::string MessageReader::string(const std::string& k) {
+  const nlohmann::json& v = field(k);
+  if (!v.is_string()) fail("bad_value", "must be a string", k);
+  return v.get<std::string>();
+}
+
+std::optional<std::string> MessageReader::optionalString(const std::string& k) {
+  if (!has(k)) return std::nullopt;
+  return string(k);
+}
+
+double MessageReader::number(const std::string& k, double dflt, double lo, double hi, const std::string& unit) {
+  if (!has(k)) return dflt;
+  const nlohmann::json& v = j_.at(k);
+  if (!v.is_number()) fail("bad_value", "must be a number (" + unit + ")", k);
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) fail("bad_value", "must be finite", k);
+  if (x < lo || x > hi) {
+    std::ostringstream s;
+    s << x << " " << unit << " is outside the allowed range [" << lo << ", " << hi << "] " << unit;
+    fail("out_of_range", s.str(), k);
+  }
+  return x;
+}
+
+std::optional<long long> MessageReader::optionalInteger(const std::string& k, long long lo, long long hi) {
+  if (!has(k)) return std::nullopt;
+  const nlohmann::json& v = j_.at(k);
+  if (!v.is_number_integer()) fail("bad_value", "must be an integer", k);
+  const long long x = v.get<long long>();
+  if (x < lo || x > hi)
+    fail("out_of_range", std::to_string(x) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", k);
+  return x;
+}
+
+bool MessageReader::boolean(const std::string& k, bool dflt) {
+  if (!has(k)) return dflt;
+  if (!j_.at(k).is_boolean()) fail("bad_value", "must be true or false", k);
+  return j_.at(k).get<bool>();
+}
+
+MessageReader MessageReader::object(const std::string& k) { return MessageReader(field(k), pointer(k)); }
+
+void MessageReader::rejectUnknown() const {
+  for (const auto& item : j_.items())
+    if (!seen_.count(item.key())) fail("unknown_field", "unknown field", item.key());
+}
+
+bool isIdentifier(const std::string& s) {
+  if (s.empty() || s.size() > 64) return false;
+  auto ok = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'); };
+  if (!ok(s[0])) return false;
+  for (char c : s)
+    if (!ok(c) && c != '_' && c != '-') return false;
+  return true;
+}
+
+}  // namespace orthosim::server

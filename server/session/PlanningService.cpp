@@ -1,0 +1,50 @@
+#include "session/PlanningService.hpp"
+
+#include <boost/asio/post.hpp>
+#include <iostream>
+
+namespace orthosim::server {
+
+PlanningService::PlanningService(PlanningOptions options)
+    : options_(std::move(options)),
+      cases_(options_.cases, options_.dataDir),
+      previewPool_(static_cast<std::size_t>(std::max(1, options_.previewThreads))),
+      fineJobs_(options_.fineWorkers, options_.fineQueue),
+      plans_(options_.dataDir / "plans") {}
+
+PlanningService::~PlanningService() { shutdown(); }
+
+bool PlanningService::tryEnter() {
+  int n = sessions_.load();
+  while (n < options_.maxSessions)
+    if (sessions_.compare_exchange_weak(n, n + 1)) return true;
+  return false;
+}
+
+void PlanningService::leave() { --sessions_; }
+
+nlohmann::json PlanningService::health(const std::string& version) const {
+  return {{"status", "ok"},
+          {"version", version},
+          {"sessions", sessions_.load()},
+          {"jobs", {{"running", fineJobs_.running()}, {"queued", fineJobs_.queued()}}}};
+}
+
+void PlanningService::warmUp(const std::string& caseId) {
+  boost::asio::post(previewPool_, [this, caseId] {
+    try {
+      cases_.model(caseId, Resolution::Coarse);
+      std::cerr << "orthosim serve: case " << caseId << " ready\n";
+    } catch (const std::exception& e) {
+      std::cerr << "orthosim serve: case " << caseId << " cannot be built: " << e.what() << "\n";
+    }
+  });
+}
+
+void PlanningService::shutdown() {
+  fineJobs_.shutdown();
+  previewPool_.stop();  // queued previews never start; running ones see their session's cancel
+  previewPool_.join();
+}
+
+}  // namespace orthosim::server

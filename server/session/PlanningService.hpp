@@ -1,0 +1,65 @@
+#pragma once
+// What every planning session shares: the case library, the thread pool previews run on, the
+// bounded queue of fine jobs, saved plans and exported files, and the count of open sessions.
+// Owned by the server; outlives every session.
+#include <atomic>
+#include <boost/asio/thread_pool.hpp>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cases/CaseLibrary.hpp"
+#include "session/AnatomicalPose.hpp"
+#include "session/ExportStore.hpp"
+#include "session/JobQueue.hpp"
+#include "session/PlanStore.hpp"
+
+namespace orthosim::server {
+
+struct PlanningOptions {
+  std::filesystem::path dataDir;  // cases written here, tissue cache, saved plans
+  std::vector<CaseEntry> cases;
+  int previewThreads = 2;  // sessions' coarse solves and case openings
+  int fineWorkers = 1;     // fine jobs at once (each uses every core in its factorisations)
+  int fineQueue = 8;       // fine jobs waiting at most
+  int maxSessions = 32;
+  PoseLimits limits;
+};
+
+class PlanningService {
+ public:
+  explicit PlanningService(PlanningOptions options);
+  ~PlanningService();
+
+  CaseLibrary& cases() { return cases_; }
+  boost::asio::thread_pool& previewPool() { return previewPool_; }
+  JobQueue& fineJobs() { return fineJobs_; }
+  PlanStore& plans() { return plans_; }
+  ExportStore& exports() { return exports_; }
+  const PoseLimits& limits() const { return options_.limits; }
+
+  // A session slot, or false when maxSessions are open; release with leave().
+  bool tryEnter();
+  void leave();
+  int sessions() const { return sessions_.load(); }
+
+  // {"status": "ok", "version", "sessions", "jobs": {"running", "queued"}} for GET /api/health.
+  nlohmann::json health(const std::string& version) const;
+  // Builds the case's coarse model in the background, so that the first session opens it fast.
+  void warmUp(const std::string& caseId);
+  // Cancels every fine job and waits for running work to stop (SIGTERM).
+  void shutdown();
+
+ private:
+  PlanningOptions options_;
+  CaseLibrary cases_;
+  boost::asio::thread_pool previewPool_;
+  JobQueue fineJobs_;
+  PlanStore plans_;
+  ExportStore exports_;
+  std::atomic<int> sessions_{0};
+};
+
+}  // namespace orthosim::server

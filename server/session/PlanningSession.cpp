@@ -1,0 +1,630 @@
+#include "session/PlanningSession.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "eval/SkinFigures.hpp"
+#include "mesh/SurfaceImport.hpp"
+#include "scene/Osteotomy.hpp"
+#include "session/SolveFiguresJson.hpp"
+#include "solver/Model.hpp"
+#include "solver/NewtonSolver.hpp"
+#include "solver/PlanSolver.hpp"
+
+namespace orthosim::server {
+using nlohmann::json;
+using Poses = std::map<std::string, AnatomicalPose>;
+
+namespace {
+
+constexpr const char* kPlanFormat = "orthosim-plan-1";
+
+struct FragmentInfo {
+  std::string name, bone;
+  Eigen::Vector3d pivot;
+};
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace
+
+struct PlanningSession::OpenCase {
+  std::string id;
+  std::shared_ptr<const CaseModel> coarse;
+  std::vector<FragmentInfo> fragments;  // the movable ones, in scene order
+  SkinFigureProbe probe;
+  std::unique_ptr<Model> model;  // only the session's serial work touches it and lastGood
+  SimState lastGood;
+  // Guarded by the session's mutex: the newest converged preview, for exports and comparisons.
+  std::shared_ptr<const Eigen::Matrix3Xd> previewX;
+  Poses previewPoses;
+
+  const FragmentInfo* fragment(const std::string& name) const {
+    for (const FragmentInfo& f : fragments)
+      if (f.name == name) return &f;
+    return nullptr;
+  }
+  std::map<std::string, FragmentMotion> plan(const Poses& poses) const {
+    std::map<std::string, FragmentMotion> plan;
+    for (const FragmentInfo& f : fragments) {
+      auto it = poses.find(f.name);
+      plan[f.name] = motionFromPose(it == poses.end() ? AnatomicalPose{} : it->second, coarse->spec.frame, f.pivot);
+    }
+    return plan;
+  }
+};
+
+struct PlanningSession::FineResult {
+  long long job = 0;
+  std::string caseId;
+  std::shared_ptr<const CaseModel> model;
+  Eigen::Matrix3Xd x;
+  Poses poses;
+};
+
+namespace {
+
+// The fragments a plan can move (the case scene's prescribed fragments), each turning about the
+// centroid of its bonded tissue nodes at rest.
+std::vector<FragmentInfo> movableFragments(const CaseModel& m) {
+  std::vector<FragmentInfo> out;
+  for (const FragmentSpec& f : m.scene.fragments) {
+    const auto bone = std::find_if(m.spec.bones.begin(), m.spec.bones.end(), [&](const CaseBone& b) { return b.name == f.name; });
+    if (f.free || (bone != m.spec.bones.end() && bone->fixed)) continue;  // what is left of the skull stays
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int n : f.nodes) c += m.scene.mesh.rest.col(n);
+    if (!f.nodes.empty()) c /= static_cast<double>(f.nodes.size());
+    out.push_back({f.name, m.spec.boneOf(f.name), c});
+  }
+  return out;
+}
+
+}  // namespace
+
+PlanningSession::PlanningSession(PlanningService& service, Send send)
+    : service_(service), send_(std::move(send)), id_(randomHexId()), work_(service.previewPool()) {}
+
+PlanningSession::~PlanningSession() { close(); }
+
+void PlanningSession::start() {
+  const PoseLimits& l = service_.limits();
+  reply({{"type", "welcome"},
+         {"session", id_},
+         {"protocol", 1},
+         {"limits", {{"translation_mm", l.translationMm}, {"rotation_deg", l.rotationDeg}}}},
+        nullptr);
+}
+
+void PlanningSession::close() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (closed_) return;
+    closed_ = true;
+  }
+  work_.close();
+  service_.fineJobs().cancelOwner(id_);
+}
+
+void PlanningSession::reply(json message, const json& id) {
+  if (!id.is_null()) message["id"] = id;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (closed_) return;
+  }
+  send_(message.dump());
+}
+
+void PlanningSession::sendError(const std::string& code, const std::string& message, const std::string& path,
+                                const json& id) {
+  reply({{"type", "error"}, {"error", code}, {"message", message}, {"path", path}}, id);
+}
+
+void PlanningSession::refuseOversized(std::size_t bytes, std::size_t limit) {
+  sendError("message_too_large",
+            "message of " + std::to_string(bytes) + " bytes or more is over the limit of " + std::to_string(limit) +
+                " bytes; it was ignored",
+            "", nullptr);
+}
+
+void PlanningSession::refuseBinary() {
+  sendError("binary_message", "binary messages are not accepted: send JSON text", "", nullptr);
+}
+
+void PlanningSession::handle(const std::string& text) {
+  json message, id;
+  try {
+    message = json::parse(text);
+  } catch (const json::exception& e) {  // syntax errors, and numbers beyond double (1e999)
+    return sendError("malformed_json", std::string("message is not valid JSON: ") + e.what(), "", nullptr);
+  }
+  try {
+    if (message.is_object() && message.contains("id")) {
+      id = message["id"];
+      const bool ok = (id.is_number_integer()) || (id.is_string() && id.get<std::string>().size() <= 64);
+      if (!ok) {
+        id = nullptr;
+        throw ProtocolError("bad_value", "/id: must be an integer or a string of at most 64 characters", "/id");
+      }
+    }
+    MessageReader r(message, "");
+    r.has("id");
+    dispatch(r.string("type"), r, id);
+  } catch (const ProtocolError& e) {
+    sendError(e.code, e.what(), e.path, id);
+  } catch (const std::exception& e) {
+    sendError("internal", std::string("the server could not handle the message: ") + e.what(), "", id);
+  }
+}
+
+void PlanningSession::dispatch(const std::string& type, MessageReader& r, const json& id) {
+  using Handler = void (PlanningSession::*)(MessageReader&, const json&);
+  static const std::map<std::string, Handler> handlers = {
+      {"list_cases", &PlanningSession::listCases}, {"open", &PlanningSession::open},
+      {"describe", &PlanningSession::describe},    {"set_poses", &PlanningSession::setPoses},
+      {"reset", &PlanningSession::reset},          {"preview", &PlanningSession::preview},
+      {"confirm", &PlanningSession::confirm},      {"cancel", &PlanningSession::cancel},
+      {"list_plans", &PlanningSession::listPlans}, {"save_plan", &PlanningSession::savePlan},
+      {"load_plan", &PlanningSession::loadPlan},   {"export", &PlanningSession::exportSkin}};
+  auto it = handlers.find(type);
+  if (it == handlers.end()) {
+    std::string known;
+    for (const auto& h : handlers) known += (known.empty() ? "" : ", ") + h.first;
+    throw ProtocolError("unknown_type", "/type: unknown message type '" + type + "'; known types: " + known, "/type");
+  }
+  (this->*(it->second))(r, id);
+}
+
+// ---- cases ---------------------------------------------------------------------------------
+
+void PlanningSession::listCases(MessageReader& r, const json& id) {
+  r.rejectUnknown();
+  json cases = casesJson(service_.cases().catalog());
+  cases["type"] = "cases";
+  reply(std::move(cases), id);
+}
+
+void PlanningSession::open(MessageReader& r, const json& id) {
+  const std::string caseId = r.string("case");
+  r.rejectUnknown();
+  if (!service_.cases().find(caseId))
+    throw ProtocolError("unknown_case", "/case: no case '" + caseId + "'; list_cases names the cases", "/case");
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    opening_ = caseId;
+  }
+  reply({{"type", "opening"}, {"case", caseId}}, id);
+  auto self = shared_from_this();
+  work_.submit(
+      [self, caseId, id](const std::atomic<bool>& cancel) {
+        const auto t0 = std::chrono::steady_clock::now();
+        auto c = std::make_shared<OpenCase>();
+        try {
+          c->id = caseId;
+          c->coarse = self->service_.cases().model(caseId, Resolution::Coarse);
+          if (cancel) return;
+          c->fragments = movableFragments(*c->coarse);
+          c->probe = SkinFigureProbe(*c->coarse);
+          c->model = std::make_unique<Model>(c->coarse->scene);
+          c->lastGood = c->model->restState();
+        } catch (const std::exception& e) {
+          {
+            const std::lock_guard<std::mutex> lock(self->mutex_);
+            if (self->opening_ == caseId) self->opening_.clear();
+          }
+          return self->sendError("open_failed", "case '" + caseId + "' cannot be opened: " + e.what(), "/case", id);
+        }
+        json opened;
+        {
+          const std::lock_guard<std::mutex> lock(self->mutex_);
+          self->open_ = c;
+          self->opening_.clear();
+          self->poses_.clear();
+          opened = self->caseJson(*c);
+        }
+        opened["type"] = "opened";
+        opened["seconds"] = secondsSince(t0);
+        self->reply(std::move(opened), id);
+      },
+      false);
+}
+
+json PlanningSession::caseJson(const OpenCase& c) const {
+  const CaseModel& m = *c.coarse;
+  json fragments = json::array();
+  for (const FragmentInfo& f : c.fragments) {
+    auto it = poses_.find(f.name);
+    fragments.push_back({{"name", f.name},
+                         {"bone", f.bone},
+                         {"pivot_mm", vec(f.pivot)},
+                         {"pose", poseToJson(it == poses_.end() ? AnatomicalPose{} : it->second)}});
+  }
+  json cuts = json::array();
+  for (const OsteotomySpec& cut : m.spec.cuts) {
+    json j = {{"kind", cut.kind}, {"bone", cut.bone}};
+    if (!cut.side.empty()) j["side"] = cut.side;
+    if (!cut.fragment.empty()) j["fragment"] = cut.fragment;
+    if (cut.offset >= 0) j["offset_mm"] = cut.offset;
+    cuts.push_back(std::move(j));
+  }
+  json landmarks = json::array();
+  for (const auto& [name, p] : m.spec.landmarks) landmarks.push_back(name);
+  const AnatomicalFrame& f = m.spec.frame;
+  return {{"case", c.id},
+          {"name", m.spec.name},
+          {"frame", {{"anterior", vec(f.anterior)}, {"superior", vec(f.superior)}, {"right", vec(f.right)}}},
+          {"fragments", std::move(fragments)},
+          {"cuts", std::move(cuts)},
+          {"templates", osteotomyTemplates()},
+          {"landmarks", std::move(landmarks)},
+          {"coarse",
+           {{"nodes", m.scene.mesh.numNodes()},
+            {"tetrahedra", m.scene.mesh.numTets()},
+            {"boundary_triangles", m.tissue.quality.boundaryFaces},
+            {"display_skin_triangles", m.tissue.skin.numTriangles()}}}};
+}
+
+std::shared_ptr<PlanningSession::OpenCase> PlanningSession::requireOpen() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (open_ && opening_.empty()) return open_;
+  if (!opening_.empty())
+    throw ProtocolError("case_not_open", "case '" + opening_ + "' is still opening; wait for 'opened'");
+  throw ProtocolError("case_not_open", "no case is open; send 'open' first");
+}
+
+void PlanningSession::describe(MessageReader& r, const json& id) {
+  r.rejectUnknown();
+  const std::shared_ptr<OpenCase> c = requireOpen();
+  json j;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    j = caseJson(*c);
+  }
+  j["type"] = "case";
+  reply(std::move(j), id);
+}
+
+// ---- poses and previews ----------------------------------------------------------------------
+
+Poses PlanningSession::readPoses(MessageReader r, const OpenCase& c) const {
+  Poses poses;
+  for (const auto& item : r.raw().items()) {
+    const std::string& name = item.key();
+    if (!c.fragment(name)) {
+      std::string known;
+      for (const FragmentInfo& f : c.fragments) known += (known.empty() ? "" : ", ") + f.name;
+      throw ProtocolError("unknown_fragment",
+                          r.pointer(name) + ": no movable fragment '" + name + "' in case '" + c.id +
+                              "'; movable fragments: " + known,
+                          r.pointer(name));
+    }
+    poses[name] = readPose(r.object(name), service_.limits());
+  }
+  return poses;
+}
+
+json PlanningSession::posesJson() const {
+  json j = json::object();
+  if (!open_) return j;
+  for (const FragmentInfo& f : open_->fragments) {
+    auto it = poses_.find(f.name);
+    j[f.name] = poseToJson(it == poses_.end() ? AnatomicalPose{} : it->second);
+  }
+  return j;
+}
+
+void PlanningSession::setPoses(MessageReader& r, const json& id) {
+  const std::shared_ptr<OpenCase> c = requireOpen();
+  const Poses changed = readPoses(r.object("poses"), *c);  // all or nothing: validated first
+  const bool previewAfter = r.boolean("preview", true);
+  r.rejectUnknown();
+  json poses;
+  std::vector<std::string> warnings;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [name, pose] : changed) poses_[name] = pose;
+    poses = posesJson();
+    for (const auto& [name, pose] : poses_)
+      for (std::string& w : unusualPoseWarnings(name, pose)) warnings.push_back(std::move(w));
+  }
+  reply({{"type", "poses"}, {"poses", std::move(poses)}, {"warnings", warnings}}, id);
+  if (previewAfter) schedulePreview(id);
+}
+
+void PlanningSession::reset(MessageReader& r, const json& id) {
+  const std::shared_ptr<OpenCase> c = requireOpen();
+  const std::optional<std::string> fragment = r.optionalString("fragment");
+  const bool previewAfter = r.boolean("preview", true);
+  r.rejectUnknown();
+  if (fragment && !c->fragment(*fragment))
+    throw ProtocolError("unknown_fragment", "/fragment: no movable fragment '" + *fragment + "'", "/fragment");
+  json poses;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (fragment)
+      poses_.erase(*fragment);
+    else
+      poses_.clear();
+    poses = posesJson();
+  }
+  reply({{"type", "poses"}, {"poses", std::move(poses)}}, id);
+  if (previewAfter) schedulePreview(id);
+}
+
+void PlanningSession::preview(MessageReader& r, const json& id) {
+  requireOpen();
+  r.rejectUnknown();
+  schedulePreview(id);
+}
+
+void PlanningSession::schedulePreview(const json& id) {
+  std::shared_ptr<OpenCase> c;
+  Poses poses;
+  long long seq = 0;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    c = open_;
+    poses = poses_;
+    seq = ++previewSeq_;
+  }
+  auto self = shared_from_this();
+  work_.submit(
+      [self, c, seq, poses, id](const std::atomic<bool>& cancel) {
+        try {
+          self->runPreview(c, seq, poses, id, cancel);
+        } catch (const std::exception& e) {  // the last good preview stays as it was
+          self->reply({{"type", "preview_failed"}, {"preview", seq}, {"case", c->id},
+                       {"message", std::string("the coarse solve failed: ") + e.what() + "; the last good preview is kept"}},
+                      id);
+        }
+      },
+      true);
+}
+
+void PlanningSession::runPreview(const std::shared_ptr<OpenCase>& c, long long seq, Poses poses, const json& id,
+                                 const std::atomic<bool>& cancel) {
+  if (cancel) return;  // a newer pose came in before this one started
+  const auto t0 = std::chrono::steady_clock::now();
+  Model& model = *c->model;
+  SolveControl control;
+  control.cancel = &cancel;
+  const std::map<std::string, FragmentMotion> plan = c->plan(poses);
+  // Continue from the last converged preview (a small drag is then a small solve); from rest if
+  // that fails, since a different path may get through.
+  SolveResult result = solvePlan(model, c->lastGood, model.targetsFromPlan(plan, c->lastGood), model.scene().solver, control);
+  if (!result.converged && result.error != kCancelled && !model.isRestState(c->lastGood)) {
+    const SimState rest = model.restState();
+    result = solvePlan(model, rest, model.targetsFromPlan(plan, rest), model.scene().solver, control);
+  }
+  if (result.error == kCancelled) return;  // superseded: the newer preview reports
+  json figures = solveFiguresJson(*c->coarse, c->probe, result, c->coarse->spec.frame);
+  figures["time_s"] = secondsSince(t0);
+  if (!result.converged) {
+    return reply({{"type", "preview_failed"},
+                  {"preview", seq},
+                  {"case", c->id},
+                  {"message", "the coarse solve did not converge: " + result.error +
+                                  "; the last good preview is kept"},
+                  {"figures", std::move(figures)}},
+                 id);
+  }
+  c->lastGood = result.state;
+  json posesOut = json::object();
+  for (const FragmentInfo& f : c->fragments) {
+    auto it = poses.find(f.name);
+    posesOut[f.name] = poseToJson(it == poses.end() ? AnatomicalPose{} : it->second);
+  }
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    c->previewX = std::make_shared<const Eigen::Matrix3Xd>(result.state.x);
+    c->previewPoses = poses;
+  }
+  reply({{"type", "preview"}, {"preview", seq}, {"case", c->id}, {"poses", std::move(posesOut)}, {"figures", std::move(figures)}},
+        id);
+}
+
+// ---- fine jobs -------------------------------------------------------------------------------
+
+void PlanningSession::confirm(MessageReader& r, const json& id) {
+  const std::shared_ptr<OpenCase> c = requireOpen();
+  r.rejectUnknown();
+  Poses poses;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    poses = poses_;
+  }
+  auto self = shared_from_this();
+  auto jobId = std::make_shared<std::atomic<long long>>(0);
+  const std::optional<long long> job = service_.fineJobs().submit(
+      id_,
+      [self, c, poses, jobId](const std::atomic<bool>& cancel) {
+        while (jobId->load() == 0) std::this_thread::yield();  // submit() has not returned yet
+        self->runFine(jobId->load(), c, poses, cancel);
+      },
+      [self, jobId] { self->reply({{"type", "job_cancelled"}, {"job", jobId->load()}, {"phase", "queued"}}, nullptr); });
+  if (!job)
+    throw ProtocolError("busy", "the fine-job queue is full; try again when a job has finished");
+  jobId->store(*job);
+  reply({{"type", "job_queued"},
+         {"job", *job},
+         {"case", c->id},
+         {"position", service_.fineJobs().position(*job).value_or(0)}},
+        id);
+}
+
+void PlanningSession::runFine(long long job, const std::shared_ptr<OpenCase>& c, Poses poses,
+                              const std::atomic<bool>& cancel) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto progress = [&](const char* phase, double fraction) {
+    reply({{"type", "job_progress"}, {"job", job}, {"phase", phase}, {"fraction", fraction}}, nullptr);
+  };
+  auto cancelled = [&](const char* phase) {
+    reply({{"type", "job_cancelled"}, {"job", job}, {"phase", phase}}, nullptr);
+  };
+  try {
+    // Fractions: meshing (cached after the first time) to 0.3, the model to 0.4, the solve to 1.
+    progress("mesh", 0.0);
+    const std::shared_ptr<const CaseModel> fine = service_.cases().model(c->id, Resolution::Fine);
+    if (cancel) return cancelled("mesh");
+    progress("model", 0.3);
+    Model model(fine->scene);
+    if (cancel) return cancelled("model");
+    progress("solve", 0.4);
+    SolveControl control;
+    control.cancel = &cancel;
+    control.onProgress = [&](const SolveProgress& p) { progress("solve", 0.4 + 0.6 * p.loadFraction); };
+    std::map<std::string, FragmentMotion> plan;
+    for (const FragmentInfo& f : c->fragments) {
+      auto it = poses.find(f.name);
+      plan[f.name] = motionFromPose(it == poses.end() ? AnatomicalPose{} : it->second, fine->spec.frame, f.pivot);
+    }
+    const SimState rest = model.restState();
+    const SolveResult result = solvePlan(model, rest, model.targetsFromPlan(plan, rest), model.scene().solver, control);
+    if (result.error == kCancelled) return cancelled("solve");
+    json figures = solveFiguresJson(*fine, SkinFigureProbe(*fine), result, fine->spec.frame);
+    figures["time_s"] = secondsSince(t0);
+    if (!result.converged)
+      return reply({{"type", "job_failed"}, {"job", job}, {"message", "the fine solve did not converge: " + result.error},
+                    {"figures", std::move(figures)}},
+                   nullptr);
+    auto done = std::make_shared<FineResult>(FineResult{job, c->id, fine, result.state.x, poses});
+    std::shared_ptr<const Eigen::Matrix3Xd> coarseX;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      fine_ = done;
+      if (c->previewPoses == poses) coarseX = c->previewX;
+    }
+    json message = {{"type", "job_done"}, {"job", job}, {"case", c->id}, {"figures", std::move(figures)}};
+    if (coarseX) message["coarse_vs_fine"] = skinDifferenceJson(*c->coarse, *coarseX, *fine, done->x);
+    reply(std::move(message), nullptr);
+  } catch (const std::exception& e) {
+    reply({{"type", "job_failed"}, {"job", job}, {"message", std::string("the fine job failed: ") + e.what()}}, nullptr);
+  }
+}
+
+void PlanningSession::cancel(MessageReader& r, const json& id) {
+  const std::optional<long long> job = r.optionalInteger("job", 1, std::numeric_limits<long long>::max());
+  r.rejectUnknown();
+  if (!job) throw ProtocolError("missing_field", "/job: required field is missing", "/job");
+  if (!service_.fineJobs().cancel(id_, *job))
+    throw ProtocolError("unknown_job", "/job: no queued or running job " + std::to_string(*job) + " of this session",
+                        "/job");
+  reply({{"type", "cancelling"}, {"job", *job}}, id);
+}
+
+// ---- plans -----------------------------------------------------------------------------------
+
+void PlanningSession::listPlans(MessageReader& r, const json& id) {
+  const std::shared_ptr<OpenCase> c = requireOpen();
+  r.rejectUnknown();
+  reply({{"type", "plans"}, {"case", c->id}, {"plans", service_.plans().list(c->id)}}, id);
+}
+
+void PlanningSession::savePlan(MessageReader& r, const json& id) {
+  const std::shared_ptr<OpenCase> c = requireOpen();
+  const std::string name = r.string("name");
+  r.rejectUnknown();
+  json poses;
+  Poses current;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    poses = posesJson();
+    current = poses_;
+  }
+  // The world-frame plan beside the anatomical poses, so that `orthosim solve` and `render` can
+  // use a saved plan too (docs/scene-format.md "plan").
+  json world = json::object();
+  for (const auto& [fragment, motion] : c->plan(current)) {
+    const Eigen::Vector3d deg = motion.rotation * 180.0 / M_PI;
+    world[fragment] = {{"translation_mm", vec(motion.translation)}, {"rotation_deg", vec(deg)}, {"center_mm", vec(motion.center)}};
+  }
+  const json plan = {{"format", kPlanFormat}, {"case", c->id}, {"name", name}, {"poses", poses}, {"plan", world}};
+  service_.plans().save(c->id, name, plan);
+  reply({{"type", "saved"}, {"case", c->id}, {"name", name}}, id);
+}
+
+void PlanningSession::loadPlan(MessageReader& r, const json& id) {
+  const std::shared_ptr<OpenCase> c = requireOpen();
+  const std::string name = r.string("name");
+  const bool previewAfter = r.boolean("preview", true);
+  r.rejectUnknown();
+  const json plan = service_.plans().load(c->id, name);
+  Poses loaded;
+  try {
+    MessageReader p(plan, "");
+    if (p.string("format") != kPlanFormat) p.fail("bad_plan", "unknown plan format", "format");
+    p.string("case");
+    p.string("name");
+    p.has("plan");
+    loaded = readPoses(p.object("poses"), *c);
+    p.rejectUnknown();
+  } catch (const ProtocolError& e) {
+    throw ProtocolError("bad_plan", "saved plan '" + name + "' is invalid: " + e.what(), "/name");
+  }
+  json poses;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    poses_ = loaded;
+    poses = posesJson();
+  }
+  reply({{"type", "loaded"}, {"case", c->id}, {"name", name}, {"poses", std::move(poses)}}, id);
+  if (previewAfter) schedulePreview(id);
+}
+
+// ---- export ----------------------------------------------------------------------------------
+
+void PlanningSession::exportSkin(MessageReader& r, const json& id) {
+  const std::shared_ptr<OpenCase> c = requireOpen();
+  std::string format = r.string("format");
+  const std::string which = r.has("result") ? r.string("result") : "preview";
+  r.rejectUnknown();
+  std::transform(format.begin(), format.end(), format.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  if (format != "stl" && format != "obj" && format != "ply")
+    throw ProtocolError("bad_value", "/format: '" + format + "' is not one of stl, obj, ply", "/format");
+  std::shared_ptr<const CaseModel> model;
+  std::shared_ptr<const Eigen::Matrix3Xd> x;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (which == "preview") {
+      model = c->coarse;
+      x = c->previewX;
+    } else if (which == "fine") {
+      if (fine_ && fine_->caseId == c->id) {
+        model = fine_->model;
+        x = std::shared_ptr<const Eigen::Matrix3Xd>(fine_, &fine_->x);
+      }
+    } else {
+      throw ProtocolError("bad_value", "/result: '" + which + "' is not one of preview, fine", "/result");
+    }
+  }
+  if (!x)
+    throw ProtocolError("no_result", "/result: there is no " + which + " result for case '" + c->id + "' yet", "/result");
+  if (model->tissue.skin.numVertices() == 0)
+    throw ProtocolError("no_skin", "case '" + c->id + "' has no skin surface to export");
+  auto self = shared_from_this();
+  work_.submit(
+      [self, model, x, format, which, caseId = c->id, id](const std::atomic<bool>&) {
+        try {
+          const std::string bytes = exportSurfaceBytes(model->deformedSkin(*x), format);
+          const std::string type = format == "stl" ? "model/stl" : format == "obj" ? "model/obj" : "application/x-ply";
+          const std::string fileName = caseId + "-" + which + "." + format;
+          const std::size_t size = bytes.size();
+          const std::string exportId = self->service_.exports().add(fileName, type, bytes);
+          self->reply({{"type", "exported"},
+                       {"format", format},
+                       {"result", which},
+                       {"file_name", fileName},
+                       {"bytes", size},
+                       {"url", "/api/exports/" + exportId}},
+                      id);
+        } catch (const std::exception& e) {
+          self->sendError("export_failed", std::string("export failed: ") + e.what(), "", id);
+        }
+      },
+      false);
+}
+
+}  // namespace orthosim::server

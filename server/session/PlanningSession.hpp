@@ -1,0 +1,82 @@
+#pragma once
+// One client's planning session (one WebSocket connection): the case it has open, the fragment
+// poses, the newest coarse preview, its fine jobs. handle() runs on the connection's network
+// strand and only parses, validates and schedules: solves run on the service's threads and
+// report back through `send`, which may be called from any thread. docs/protocol.md lists every
+// message.
+#include <Eigen/Core>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "session/AnatomicalPose.hpp"
+#include "session/MessageReader.hpp"
+#include "session/PlanningService.hpp"
+#include "session/SerialWork.hpp"
+
+namespace orthosim::server {
+
+class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
+ public:
+  using Send = std::function<void(const std::string& text)>;
+
+  PlanningSession(PlanningService& service, Send send);
+  ~PlanningSession();
+
+  const std::string& id() const { return id_; }
+  void start();                           // sends "welcome"
+  void handle(const std::string& text);   // one client message
+  void refuseOversized(std::size_t bytes, std::size_t limit);
+  void refuseBinary();
+  // The connection is gone: cancel previews and this session's fine jobs. Idempotent.
+  void close();
+
+ private:
+  struct OpenCase;
+  struct FineResult;
+
+  void dispatch(const std::string& type, MessageReader& r, const nlohmann::json& id);
+  void listCases(MessageReader& r, const nlohmann::json& id);
+  void open(MessageReader& r, const nlohmann::json& id);
+  void describe(MessageReader& r, const nlohmann::json& id);
+  void setPoses(MessageReader& r, const nlohmann::json& id);
+  void reset(MessageReader& r, const nlohmann::json& id);
+  void preview(MessageReader& r, const nlohmann::json& id);
+  void confirm(MessageReader& r, const nlohmann::json& id);
+  void cancel(MessageReader& r, const nlohmann::json& id);
+  void listPlans(MessageReader& r, const nlohmann::json& id);
+  void savePlan(MessageReader& r, const nlohmann::json& id);
+  void loadPlan(MessageReader& r, const nlohmann::json& id);
+  void exportSkin(MessageReader& r, const nlohmann::json& id);
+
+  std::shared_ptr<OpenCase> requireOpen() const;  // throws case_not_open
+  std::map<std::string, AnatomicalPose> readPoses(MessageReader r, const OpenCase& c) const;
+  void schedulePreview(const nlohmann::json& id);
+  void runPreview(const std::shared_ptr<OpenCase>& c, long long seq, std::map<std::string, AnatomicalPose> poses,
+                  const nlohmann::json& id, const std::atomic<bool>& cancel);
+  void runFine(long long job, const std::shared_ptr<OpenCase>& c, std::map<std::string, AnatomicalPose> poses,
+               const std::atomic<bool>& cancel);
+  nlohmann::json posesJson() const;  // with mutex_ held
+  nlohmann::json caseJson(const OpenCase& c) const;
+
+  void reply(nlohmann::json message, const nlohmann::json& id);
+  void sendError(const std::string& code, const std::string& message, const std::string& path,
+                 const nlohmann::json& id);
+
+  PlanningService& service_;
+  Send send_;
+  std::string id_;
+  SerialWork work_;
+  mutable std::mutex mutex_;
+  bool closed_ = false;
+  std::shared_ptr<OpenCase> open_;
+  std::string opening_;  // id of a case being opened
+  std::map<std::string, AnatomicalPose> poses_;
+  long long previewSeq_ = 0;
+  std::shared_ptr<const FineResult> fine_;  // the newest finished fine job
+};
+
+}  // namespace orthosim::server

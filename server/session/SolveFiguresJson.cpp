@@ -1,0 +1,53 @@
+#include "session/SolveFiguresJson.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace orthosim::server {
+using nlohmann::json;
+namespace {
+
+double finiteOr0(double v) { return std::isfinite(v) ? v : 0.0; }
+
+json anatomical(const Eigen::Vector3d& d, const AnatomicalFrame& f) {
+  return {{"anterior_mm", d.dot(f.anterior)}, {"superior_mm", d.dot(f.superior)}, {"right_mm", d.dot(f.right)},
+          {"total_mm", d.norm()}};
+}
+
+}  // namespace
+
+json solveFiguresJson(const CaseModel& model, const SkinFigureProbe& probe, const SolveResult& r,
+                      const AnatomicalFrame& frame) {
+  const SkinFigures skin = probe.figures(model, r.state.x);
+  json landmarks = json::object();
+  for (const LandmarkMotion& l : skin.landmarks) landmarks[l.name] = anatomical(l.displacement, frame);
+  json out = {{"converged", r.converged},
+              {"load_fraction", r.loadFraction},
+              {"solve_s", r.timings.total},
+              {"iterations", r.iterations},
+              {"substeps", static_cast<int>(r.substeps.size())},
+              {"residual_n", finiteOr0(r.residual)},
+              {"max_skin_displacement_mm", skin.maxDisplacementMm},
+              {"max_skin_displacement_at_mm", {skin.maxAt.x(), skin.maxAt.y(), skin.maxAt.z()}},
+              {"mean_skin_displacement_mm", skin.meanDisplacementMm},
+              {"landmarks", std::move(landmarks)},
+              {"resolution", resolutionName(model.resolution)},
+              {"nodes", model.scene.mesh.numNodes()},
+              {"tetrahedra", model.scene.mesh.numTets()}};
+  if (!r.converged) out["error"] = r.error;
+  return out;
+}
+
+json skinDifferenceJson(const CaseModel& coarse, const Eigen::Matrix3Xd& coarseX, const CaseModel& fine,
+                        const Eigen::Matrix3Xd& fineX) {
+  if (coarse.skinEmbedding.numPoints() == 0 || coarse.skinEmbedding.numPoints() != fine.skinEmbedding.numPoints())
+    return json::object();
+  const Eigen::VectorXd d =
+      (coarse.skinEmbedding.apply(coarseX) - fine.skinEmbedding.apply(fineX)).colwise().norm().transpose();
+  std::vector<double> sorted(d.data(), d.data() + d.size());
+  std::sort(sorted.begin(), sorted.end());
+  const double p95 = sorted[std::min(sorted.size() - 1, static_cast<size_t>(0.95 * static_cast<double>(sorted.size())))];
+  return {{"max_mm", d.maxCoeff()}, {"mean_mm", d.mean()}, {"p95_mm", p95}};
+}
+
+}  // namespace orthosim::server

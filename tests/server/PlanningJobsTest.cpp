@@ -1,0 +1,135 @@
+// Fine jobs: cancel while running and while queued, no job outlives its session, and SIGTERM
+// during a job stops the server cleanly without harming saved plans.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "HttpTestClient.hpp"
+#include "ServerProcess.hpp"
+#include "WsTestClient.hpp"
+
+namespace orthosim {
+namespace {
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+void openPhantom(test::WsTestClient& ws) {
+  ws.request({{"type", "open"}, {"case", "phantom-0"}});
+  ws.waitFor("opened", 120s);
+  ws.request({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 4}}}}}, {"preview", false}});
+}
+
+json health(const test::ServerProcess& server) {
+  return json::parse(test::httpGet(server.port(), "/api/health").body());
+}
+
+// Polls until the server reports no running or queued fine job (or the deadline passes).
+bool jobsDrain(const test::ServerProcess& server, std::chrono::milliseconds deadline) {
+  const auto end = std::chrono::steady_clock::now() + deadline;
+  while (std::chrono::steady_clock::now() < end) {
+    const json h = health(server);
+    if (h["jobs"]["running"] == 0 && h["jobs"]["queued"] == 0) return true;
+    std::this_thread::sleep_for(50ms);
+  }
+  return false;
+}
+
+TEST(PlanningJobs, CancelARunningAndAQueuedJob) {
+  test::ServerProcess server;
+  test::WsTestClient ws(server.port());
+  openPhantom(ws);
+  const long long first = ws.request({{"type", "confirm"}})["job"];
+  ws.waitFor([&](const json& m) { return m.value("type", "") == "job_progress" && m["job"] == first; });
+  const json second = ws.request({{"type", "confirm"}});
+  ASSERT_EQ(second["type"], "job_queued");
+  EXPECT_EQ(second["position"], 0) << "one worker: the second waits first in line";
+  EXPECT_EQ(ws.request({{"type", "cancel"}, {"job", second["job"]}})["type"], "cancelling");
+  const json droppedQueued = ws.waitFor("job_cancelled");
+  EXPECT_EQ(droppedQueued["job"], second["job"]);
+  EXPECT_EQ(droppedQueued["phase"], "queued");
+  ws.request({{"type", "cancel"}, {"job", first}});
+  const json stopped = ws.waitFor("job_cancelled", 30s);
+  EXPECT_EQ(stopped["job"], first);
+  EXPECT_TRUE(jobsDrain(server, 5s));
+  for (const json& m : ws.received()) EXPECT_NE(m["type"], "job_done") << "a cancelled job reports no result";
+  // The session still previews.
+  ws.send({{"type", "preview"}});
+  EXPECT_TRUE(ws.waitFor("preview")["figures"]["converged"].get<bool>());
+}
+
+TEST(PlanningJobs, ASessionThatDisconnectsTakesItsJobsWithIt) {
+  test::ServerProcess server;
+  {
+    test::WsTestClient ws(server.port());
+    openPhantom(ws);
+    ws.request({{"type", "confirm"}});
+    ws.request({{"type", "confirm"}});
+    ws.waitFor("job_progress");
+    EXPECT_EQ(health(server)["jobs"]["queued"], 1);
+  }  // the connection drops without a goodbye
+  EXPECT_TRUE(jobsDrain(server, 10s)) << health(server).dump();
+  const auto end = std::chrono::steady_clock::now() + 10s;
+  while (health(server)["sessions"] != 0 && std::chrono::steady_clock::now() < end) std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(health(server)["sessions"], 0);
+}
+
+TEST(PlanningJobs, SigtermDuringAJobStopsCleanlyAndKeepsSavedPlans) {
+  const std::filesystem::path data = std::filesystem::path(test::testDataDir());
+  test::ServerProcess server({"--data", data.string(), "--no-warm-up"});
+  test::WsTestClient ws(server.port());
+  openPhantom(ws);
+  ASSERT_EQ(ws.request({{"type", "save_plan"}, {"name", "sigterm-plan"}})["type"], "saved");
+  ws.request({{"type", "confirm"}});
+  ws.waitFor("job_progress");
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_EQ(server.stop(SIGTERM, 20s), 0) << "exit code 0 on SIGTERM";
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, 10s);
+  std::ifstream in(data / "plans" / "phantom-0" / "sigterm-plan.json");
+  ASSERT_TRUE(in) << "the saved plan is on disk";
+  const json plan = json::parse(in);
+  EXPECT_EQ(plan["poses"]["maxilla"]["anterior_mm"], 4.0);
+  EXPECT_EQ(plan["plan"]["maxilla"]["translation_mm"][0], -4.0) << "world frame: anterior is -x in the phantom";
+  for (const auto& e : std::filesystem::directory_iterator(data / "plans" / "phantom-0"))
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "no temporary file left: " << e.path();
+}
+
+TEST(PlanningJobs, TheServerAnswersWhileSolving) {
+  test::ServerProcess server;
+  test::WsTestClient busy(server.port()), other(server.port());
+  openPhantom(busy);
+  openPhantom(other);
+  busy.request({{"type", "confirm"}});
+  busy.waitFor("job_progress");
+  busy.send({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 6}}}}}});  // a preview too
+  // Solves run on worker threads: the network threads answer at once meanwhile.
+  for (int i = 0; i < 5; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    EXPECT_EQ(health(server)["status"], "ok");
+    EXPECT_EQ(other.request({{"type", "describe"}})["type"], "case");
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, 1000ms) << "a blocked network thread would wait for a whole solve";
+  }
+}
+
+TEST(PlanningJobs, TheQueueIsBounded) {
+  test::ServerProcess server;
+  test::WsTestClient ws(server.port());
+  openPhantom(ws);
+  ws.request({{"type", "confirm"}});
+  int queued = 0;
+  json refusal;
+  for (int i = 0; i < 20 && refusal.is_null(); ++i) {
+    const json r = ws.request({{"type", "confirm"}});
+    if (r["type"] == "job_queued") ++queued;
+    if (r["type"] == "error") refusal = r;
+  }
+  EXPECT_EQ(refusal["error"], "busy");
+  EXPECT_GE(queued, 7);  // the running job plus 8 waiting
+  EXPECT_LE(queued, 8);
+}
+
+}  // namespace
+}  // namespace orthosim

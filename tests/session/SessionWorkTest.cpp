@@ -1,0 +1,141 @@
+// The session's serial work (newest preview wins), the fine-job queue, saved plans, exports.
+#include <gtest/gtest.h>
+
+#include <boost/asio/thread_pool.hpp>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "session/ExportStore.hpp"
+#include "session/JobQueue.hpp"
+#include "session/PlanStore.hpp"
+#include "session/ProtocolError.hpp"
+#include "session/SerialWork.hpp"
+
+namespace orthosim::server {
+namespace {
+using namespace std::chrono_literals;
+
+// Runs until cancelled (or 5 s), then records whether it was.
+SerialWork::Body slowTask(std::atomic<int>& started, std::atomic<int>& cancelled) {
+  return [&](const std::atomic<bool>& cancel) {
+    ++started;
+    const auto end = std::chrono::steady_clock::now() + 5s;
+    while (!cancel && std::chrono::steady_clock::now() < end) std::this_thread::sleep_for(1ms);
+    if (cancel) ++cancelled;
+  };
+}
+
+TEST(SerialWork, TheNewestSupersedableTaskWins) {
+  boost::asio::thread_pool pool(2);
+  SerialWork work(pool);
+  std::atomic<int> started{0}, cancelled{0}, lastRan{0};
+  work.submit(slowTask(started, cancelled), true);
+  while (started == 0) std::this_thread::sleep_for(1ms);
+  for (int i = 1; i <= 10; ++i)
+    work.submit([&, i](const std::atomic<bool>& cancel) { if (!cancel) lastRan = i; }, true);
+  while (!work.idle()) std::this_thread::sleep_for(1ms);
+  EXPECT_EQ(cancelled, 1) << "the running preview was cancelled";
+  EXPECT_EQ(lastRan, 10);
+  pool.join();
+}
+
+TEST(SerialWork, OtherTasksRunInOrderAndAreNeverDropped) {
+  boost::asio::thread_pool pool(2);
+  SerialWork work(pool);
+  std::vector<int> order;
+  std::mutex m;
+  for (int i = 0; i < 5; ++i) {
+    work.submit([&, i](const std::atomic<bool>&) { std::lock_guard<std::mutex> l(m); order.push_back(i); }, false);
+    work.submit([](const std::atomic<bool>&) {}, true);
+  }
+  while (!work.idle()) std::this_thread::sleep_for(1ms);
+  EXPECT_EQ(order, (std::vector<int>{0, 1, 2, 3, 4}));
+  pool.join();
+}
+
+TEST(SerialWork, CloseCancelsAndRefuses) {
+  boost::asio::thread_pool pool(1);
+  SerialWork work(pool);
+  std::atomic<int> started{0}, cancelled{0};
+  work.submit(slowTask(started, cancelled), false);
+  while (started == 0) std::this_thread::sleep_for(1ms);
+  work.close();
+  work.submit(slowTask(started, cancelled), false);
+  while (!work.idle()) std::this_thread::sleep_for(1ms);
+  EXPECT_EQ(cancelled, 1);
+  EXPECT_EQ(started, 1);
+  pool.join();
+}
+
+TEST(JobQueue, BoundedCancellableAndOwned) {
+  JobQueue jobs(1, 2);
+  std::atomic<int> started{0}, cancelled{0}, dropped{0};
+  auto run = [&](const std::atomic<bool>& cancel) {
+    ++started;
+    while (!cancel) std::this_thread::sleep_for(1ms);
+    ++cancelled;
+  };
+  const auto a = jobs.submit("s1", run, [&] { ++dropped; });
+  ASSERT_TRUE(a);
+  while (started == 0) std::this_thread::sleep_for(1ms);
+  const auto b = jobs.submit("s1", run, [&] { ++dropped; });
+  const auto c = jobs.submit("s2", run, [&] { ++dropped; });
+  ASSERT_TRUE(b && c);
+  EXPECT_FALSE(jobs.submit("s3", run, [] {})) << "two waiting is the capacity";
+  EXPECT_EQ(jobs.position(*b), 0);
+  EXPECT_EQ(jobs.position(*c), 1);
+  EXPECT_EQ(jobs.running(), 1);
+  EXPECT_FALSE(jobs.cancel("s2", *b)) << "not s2's job";
+  EXPECT_TRUE(jobs.cancel("s1", *b));
+  EXPECT_EQ(dropped, 1);
+  jobs.cancelOwner("s1");  // stops a, which lets c start
+  while (started < 2) std::this_thread::sleep_for(1ms);
+  EXPECT_EQ(cancelled, 1);
+  jobs.shutdown();
+  EXPECT_EQ(cancelled, 2);
+  EXPECT_EQ(jobs.running(), 0);
+  EXPECT_FALSE(jobs.submit("s1", run, [] {})) << "no job after shutdown";
+}
+
+TEST(PlanStore, SavesAtomicallyListsAndLoads) {
+  const std::filesystem::path root = std::filesystem::temp_directory_path() / ("orthosim-plans-" + randomHexId());
+  PlanStore store(root);
+  store.save("case-1", "b-plan", {{"x", 1}});
+  store.save("case-1", "a-plan", {{"x", 2}});
+  store.save("case-1", "a-plan", {{"x", 3}});  // replaces
+  EXPECT_EQ(store.list("case-1"), (std::vector<std::string>{"a-plan", "b-plan"}));
+  EXPECT_EQ(store.load("case-1", "a-plan")["x"], 3);
+  for (const auto& e : std::filesystem::directory_iterator(root / "case-1"))
+    EXPECT_EQ(e.path().extension(), ".json") << "no temporary file left";
+  EXPECT_THROW(store.save("case-1", "../evil", {}), ProtocolError);
+  EXPECT_THROW(store.load("../x", "a"), ProtocolError);
+  EXPECT_THROW(store.load("case-1", "missing"), ProtocolError);
+  std::ofstream(root / "case-1" / "torn.json") << "{\"x\": ";
+  try {
+    store.load("case-1", "torn");
+    FAIL();
+  } catch (const ProtocolError& e) {
+    EXPECT_EQ(e.code, "bad_plan");
+  }
+  EXPECT_TRUE(store.list("no-such-case").empty());
+  std::filesystem::remove_all(root);
+}
+
+TEST(ExportStore, KeepsTheNewestWithinBounds) {
+  ExportStore store(2, 1000);
+  const std::string a = store.add("a.stl", "model/stl", std::string(10, 'a'));
+  const std::string b = store.add("b.stl", "model/stl", std::string(10, 'b'));
+  const std::string c = store.add("c.stl", "model/stl", std::string(10, 'c'));
+  EXPECT_FALSE(store.find(a));
+  EXPECT_EQ(store.find(b)->bytes, std::string(10, 'b'));
+  EXPECT_EQ(store.find(c)->fileName, "c.stl");
+  const std::string big = store.add("big.stl", "model/stl", std::string(990, 'x'));
+  EXPECT_FALSE(store.find(b)) << "over the byte bound: the oldest go";
+  EXPECT_TRUE(store.find(big));
+  EXPECT_EQ(a.size(), 32u);
+  EXPECT_NE(a, b);
+}
+
+}  // namespace
+}  // namespace orthosim::server

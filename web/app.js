@@ -1,0 +1,324 @@
+// The planning page: talks to orthosim serve over /ws (docs/protocol.md), shows the streamed
+// frames, and keeps the server's newest-wins previews fed without flooding it: while a preview is
+// being solved, slider moves only update the pending pose, which is sent when the answer comes.
+"use strict";
+
+const AXES = [
+  { key: "anterior_mm", label: "Advancement (+) / setback (−)", unit: "mm", range: 15, step: 0.1 },
+  { key: "superior_mm", label: "Impaction (+) / downgraft (−)", unit: "mm", range: 15, step: 0.1 },
+  { key: "right_mm", label: "Lateral shift (right +)", unit: "mm", range: 15, step: 0.1 },
+  { key: "pitch_deg", label: "Pitch (front up +)", unit: "°", range: 15, step: 0.5 },
+  { key: "roll_deg", label: "Roll (right side up +)", unit: "°", range: 15, step: 0.5 },
+  { key: "yaw_deg", label: "Yaw (front to right +)", unit: "°", range: 15, step: 0.5 },
+];
+const LANDMARK_NAMES = {
+  pronasale: "nose tip (pronasale)", subnasale: "subnasale", labrale_superius: "upper lip (labrale sup.)",
+  stomion: "stomion", labrale_inferius: "lower lip (labrale inf.)", soft_pogonion: "chin (soft pogonion)",
+  soft_menton: "soft menton",
+};
+
+const $ = (id) => document.getElementById(id);
+const state = {
+  ws: null, caseId: null, fragments: [], poses: {}, limits: { translation_mm: 30, rotation_deg: 30 },
+  previewInFlight: false, posesDirty: false, job: null, nextId: 1, viewInFlight: false, pendingView: null,
+  lastFrameUrl: null,
+};
+
+function token() {
+  const p = new URLSearchParams(location.hash.slice(1) || location.search.slice(1));
+  return p.get("token");
+}
+
+function say(text, kind = "info") {
+  const line = document.createElement("div");
+  line.className = kind;
+  line.textContent = `${new Date().toLocaleTimeString()} ${text}`;
+  $("messages").prepend(line);
+  while ($("messages").childElementCount > 30) $("messages").lastChild.remove();
+}
+
+function send(message) {
+  if (!state.ws || state.ws.readyState !== WebSocket.OPEN) return say("not connected to the server", "error");
+  message.id = state.nextId++;
+  state.ws.send(JSON.stringify(message));
+  return message.id;
+}
+
+// ---- connection -----------------------------------------------------------------------------
+
+function connect() {
+  const t = token();
+  const url = `${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/ws${t ? "?token=" + encodeURIComponent(t) : ""}`;
+  const ws = new WebSocket(url);
+  ws.binaryType = "blob";
+  state.ws = ws;
+  ws.onopen = () => { $("connection").textContent = "connected"; send({ type: "list_cases" }); };
+  ws.onclose = () => {
+    $("connection").textContent = "disconnected — reconnecting…";
+    setEnabled(false);
+    setTimeout(connect, 2000);
+  };
+  ws.onmessage = (event) => (typeof event.data === "string" ? onMessage(JSON.parse(event.data)) : onFrame(event.data));
+}
+
+const handlers = {
+  welcome: (m) => { state.limits = m.limits; },
+  cases: (m) => {
+    const select = $("case-select");
+    select.innerHTML = "";
+    for (const c of m.cases) select.add(new Option(`${c.name} — ${c.description}`, c.id));
+    if (state.caseId) { select.value = state.caseId; openCase(state.caseId); }  // after a reconnect
+  },
+  opening: (m) => say(`opening ${m.case}…`),
+  opened: (m) => onOpened(m),
+  case: () => {},
+  poses: (m) => showWarnings(m.warnings || []),
+  loaded: (m) => { state.poses = m.poses; renderFragments(); say(`plan "${m.name}" loaded`); },
+  preview: (m) => onPreview(m),
+  preview_failed: (m) => { previewAnswered(); say(m.message, "error"); },
+  job_queued: (m) => onJob(m, `queued (${m.position} ahead)`, 0),
+  job_progress: (m) => onJob(m, `${m.phase}…`, m.fraction),
+  job_done: (m) => onJobDone(m),
+  job_cancelled: (m) => onJobEnd(m, "cancelled"),
+  job_failed: (m) => onJobEnd(m, m.message),
+  cancelling: () => {},
+  saved: (m) => { say(`plan "${m.name}" saved`); send({ type: "list_plans" }); },
+  plans: (m) => {
+    const list = $("plan-list");
+    list.innerHTML = "";
+    for (const name of m.plans) list.add(new Option(name, name));
+    $("load-plan").disabled = m.plans.length === 0;
+  },
+  exported: (m) => {
+    const a = $("download");
+    a.href = m.url + (token() ? "?token=" + encodeURIComponent(token()) : "");
+    a.download = m.file_name;
+    a.textContent = `download ${m.file_name} (${(m.bytes / 1e6).toFixed(1)} MB)`;
+    a.hidden = false;
+  },
+  frame: () => { state.viewInFlight = false; flushView(); },
+  error: (m) => {
+    if (m.error === "unknown_type" && /view/.test(m.message)) return;  // a server without rendering
+    if (state.previewInFlight && m.path && m.path.startsWith("/poses")) previewAnswered();
+    say(m.message, "error");
+  },
+};
+
+function onMessage(m) {
+  const handler = handlers[m.type];
+  if (handler) handler(m);
+}
+
+function onFrame(blob) {
+  const url = URL.createObjectURL(blob);
+  $("frame").src = url;
+  if (state.lastFrameUrl) URL.revokeObjectURL(state.lastFrameUrl);
+  state.lastFrameUrl = url;
+  $("frame-hint").hidden = true;
+  state.viewInFlight = false;
+  flushView();
+}
+
+// ---- case and fragments -----------------------------------------------------------------------
+
+function openCase(id) {
+  state.caseId = id;
+  send({ type: "open", case: id });
+}
+
+function onOpened(m) {
+  state.caseId = m.case;
+  state.fragments = m.fragments;
+  state.poses = {};
+  for (const f of m.fragments) state.poses[f.name] = { ...f.pose };
+  renderFragments();
+  setEnabled(true);
+  say(`${m.name} open (${m.coarse.tetrahedra} tetrahedra in the coarse model, ${m.seconds.toFixed(1)} s)`);
+  send({ type: "list_plans" });
+  sendView({ size: frameSize() });
+  send({ type: "preview" });
+}
+
+function renderFragments() {
+  const box = $("fragments");
+  box.innerHTML = "";
+  for (const f of state.fragments) {
+    const div = document.createElement("div");
+    div.className = "fragment";
+    div.dataset.fragment = f.name;
+    const head = document.createElement("div");
+    head.className = "fragment-head";
+    head.innerHTML = `<span>${f.name.replace(/_/g, " ")}</span>`;
+    const reset = document.createElement("button");
+    reset.textContent = "reset";
+    reset.onclick = () => { for (const a of AXES) state.poses[f.name][a.key] = 0; renderFragments(); posesChanged(); };
+    head.append(reset);
+    div.append(head);
+    for (const a of AXES) div.append(axisControl(f.name, a));
+    box.append(div);
+  }
+}
+
+function axisControl(fragment, axis) {
+  const row = document.createElement("label");
+  row.className = "axis";
+  const limit = axis.unit === "mm" ? state.limits.translation_mm : state.limits.rotation_deg;
+  const value = state.poses[fragment][axis.key] || 0;
+  const slider = Object.assign(document.createElement("input"), {
+    type: "range", min: -axis.range, max: axis.range, step: axis.step, value,
+  });
+  slider.setAttribute("aria-label", `${fragment} ${axis.key}`);
+  slider.dataset.fragment = fragment;
+  slider.dataset.axis = axis.key;
+  const number = Object.assign(document.createElement("input"), {
+    type: "number", min: -limit, max: limit, step: axis.step, value,
+  });
+  const set = (v, from) => {
+    if (!Number.isFinite(v) || Math.abs(v) > limit) return say(`${axis.label}: enter a number within ±${limit} ${axis.unit}`, "error");
+    state.poses[fragment][axis.key] = v;
+    if (from !== slider) slider.value = v;
+    if (from !== number) number.value = v;
+    posesChanged();
+  };
+  slider.oninput = () => set(Number(slider.value), slider);
+  number.onchange = () => set(Number(number.value), number);
+  row.append(Object.assign(document.createElement("span"), { textContent: axis.label }), slider, number,
+    Object.assign(document.createElement("span"), { textContent: axis.unit }));
+  return row;
+}
+
+// Newest wins on the server; here at most one set_poses is in flight and the latest pose follows.
+function posesChanged() {
+  if (state.previewInFlight) { state.posesDirty = true; return; }
+  state.previewInFlight = true;
+  state.posesDirty = false;
+  send({ type: "set_poses", poses: state.poses });
+}
+
+function previewAnswered() {
+  state.previewInFlight = false;
+  if (state.posesDirty) posesChanged();
+}
+
+function onPreview(m) {
+  previewAnswered();
+  const f = m.figures;
+  let rows = "";
+  for (const [name, label] of Object.entries(LANDMARK_NAMES)) {
+    const l = f.landmarks[name];
+    if (l) rows += `<tr><td>${label}</td><td>${l.anterior_mm.toFixed(2)}</td><td>${l.superior_mm.toFixed(2)}</td><td>${l.right_mm.toFixed(2)}</td></tr>`;
+  }
+  $("preview-figures").innerHTML =
+    `<p id="solve-time">Solved in <b>${f.solve_s.toFixed(2)} s</b> (${f.iterations} Newton iterations); ` +
+    `skin moved up to ${f.max_skin_displacement_mm.toFixed(1)} mm.</p>` +
+    `<table><tr><th>landmark</th><th>forward</th><th>up</th><th>right</th></tr>${rows}</table>`;
+}
+
+function showWarnings(warnings) {
+  $("warnings").hidden = warnings.length === 0;
+  $("warnings").textContent = warnings.join("; ");
+}
+
+// ---- fine jobs ------------------------------------------------------------------------------
+
+function onJob(m, text, fraction) {
+  state.job = m.job;
+  $("job-progress").hidden = false;
+  $("job-progress").value = fraction;
+  $("job-status").textContent = `Fine job ${m.job}: ${text} ${Math.round(fraction * 100)}%`;
+  $("cancel-job").disabled = false;
+}
+
+function onJobDone(m) {
+  onJob(m, "done", 1);
+  $("cancel-job").disabled = true;
+  const d = m.coarse_vs_fine;
+  $("job-status").innerHTML = `Fine job ${m.job} done in ${m.figures.time_s.toFixed(1)} s ` +
+    `(${m.figures.tetrahedra} tetrahedra).` + (d && d.max_mm !== undefined
+      ? ` Coarse vs fine on the skin: mean ${d.mean_mm.toFixed(2)} mm, 95% within ${d.p95_mm.toFixed(2)} mm, max ${d.max_mm.toFixed(2)} mm.`
+      : "");
+  $("colormap").value = "difference";
+  sendView({ colormap: "difference" });
+}
+
+function onJobEnd(m, why) {
+  $("job-status").textContent = `Fine job ${m.job}: ${why}`;
+  $("job-progress").hidden = true;
+  $("cancel-job").disabled = true;
+}
+
+// ---- view -----------------------------------------------------------------------------------
+
+function frameSize() {
+  const r = $("frame-box").getBoundingClientRect();
+  return [Math.max(320, Math.min(1600, Math.round(r.width))), Math.max(240, Math.min(1200, Math.round(r.height)))];
+}
+
+// Camera changes merge while a frame is on its way: the server renders the newest only anyway.
+function sendView(change) {
+  // orbit, pan (relative) and zoom (a factor) arrive already summed with the pending ones.
+  state.pendingView = { ...(state.pendingView || {}), ...change };
+  flushView();
+}
+
+function flushView() {
+  if (state.viewInFlight || !state.pendingView || !state.caseId) return;
+  state.viewInFlight = true;
+  send({ type: "view", ...state.pendingView });
+  state.pendingView = null;
+  setTimeout(() => { state.viewInFlight = false; flushView(); }, 1000);  // never stall on a lost frame
+}
+
+function setupViewer() {
+  const box = $("frame-box");
+  let drag = null;
+  box.onpointerdown = (e) => { drag = { x: e.clientX, y: e.clientY, pan: e.shiftKey }; box.setPointerCapture(e.pointerId); };
+  box.onpointerup = () => { drag = null; };
+  box.onpointermove = (e) => {
+    if (!drag) return;
+    const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
+    drag.x = e.clientX; drag.y = e.clientY;
+    const prev = state.pendingView || {};
+    if (drag.pan) {
+      const p = prev.pan || [0, 0];
+      sendView({ pan: [p[0] + dx, p[1] + dy] });
+    } else {
+      const o = prev.orbit || [0, 0];
+      sendView({ orbit: [o[0] + dx * 0.5, o[1] + dy * 0.5] });  // degrees
+    }
+  };
+  box.onwheel = (e) => {
+    e.preventDefault();
+    const z = (state.pendingView && state.pendingView.zoom) || 1;
+    sendView({ zoom: z * Math.exp(-e.deltaY * 0.001) });
+  };
+  for (const b of document.querySelectorAll("#views button")) b.onclick = () => sendView({ preset: b.dataset.view });
+  $("colormap").onchange = () => sendView({ colormap: $("colormap").value });
+  $("show-bones").onchange = () => sendView({ bones: $("show-bones").checked });
+  $("before-after").onchange = () => sendView({ before_after: $("before-after").checked });
+  window.addEventListener("resize", () => state.caseId && sendView({ size: frameSize() }));
+}
+
+// ---- buttons --------------------------------------------------------------------------------
+
+function setEnabled(on) {
+  for (const id of ["confirm", "save-plan", "export"]) $(id).disabled = !on;
+}
+
+function setupButtons() {
+  $("open-case").onclick = () => openCase($("case-select").value);
+  $("confirm").onclick = () => send({ type: "confirm" });
+  $("cancel-job").onclick = () => state.job && send({ type: "cancel", job: state.job });
+  $("save-plan").onclick = () => {
+    const name = $("plan-name").value.trim();
+    if (!/^[A-Za-z0-9][A-Za-z0-9_-]{0,63}$/.test(name))
+      return say("plan names are 1-64 letters, digits, '_' or '-', starting with a letter or digit", "error");
+    send({ type: "save_plan", name });
+  };
+  $("load-plan").onclick = () => send({ type: "load_plan", name: $("plan-list").value });
+  $("export").onclick = () => send({ type: "export", format: $("export-format").value, result: $("export-result").value });
+}
+
+setupViewer();
+setupButtons();
+connect();
