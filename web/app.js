@@ -96,7 +96,9 @@ const handlers = {
     a.textContent = `download ${m.file_name} (${(m.bytes / 1e6).toFixed(1)} MB)`;
     a.hidden = false;
   },
-  frame: () => { state.viewInFlight = false; flushView(); },
+  frame: (m) => {
+    $("frame-info").textContent = `${m.view} view, colour map: ${m.colormap}, ${m.width}×${m.height}, drawn in ${m.render_ms.toFixed(0)} ms`;
+  },
   error: (m) => {
     if (m.error === "unknown_type" && /view/.test(m.message)) return;  // a server without rendering
     if (state.previewInFlight && m.path && m.path.startsWith("/poses")) previewAnswered();
@@ -284,7 +286,7 @@ function setupViewer() {
       sendView({ pan: [p[0] + dx, p[1] + dy] });
     } else {
       const o = prev.orbit || [0, 0];
-      sendView({ orbit: [o[0] + dx * 0.5, o[1] + dy * 0.5] });  // degrees
+      sendView({ orbit: [o[0] - dx * 0.4, o[1] + dy * 0.4] });  // degrees: the face turns with the mouse
     }
   };
   box.onwheel = (e) => {

@@ -1,5 +1,7 @@
 #include "cases/CaseLibrary.hpp"
 
+#include <unistd.h>
+
 #include <stdexcept>
 
 #include "phantom/PhantomCase.hpp"
@@ -23,10 +25,17 @@ std::string CaseLibrary::caseFile(const CaseEntry& entry) {
   const fs::path dir = dataDir_ / "cases" / entry.id;
   const fs::path file = dir / "case.json";
   if (fs::is_regular_file(file)) return file.string();
-  const fs::path tmp = dataDir_ / "cases" / (entry.id + ".writing");
+  // Another server on the same data folder may be writing it too: each writes its own folder and
+  // the first rename wins (the phantom is deterministic, so either is the same case).
+  const fs::path tmp = dataDir_ / "cases" / (entry.id + ".writing-" + std::to_string(::getpid()));
   fs::remove_all(tmp);
   writePhantomCase(entry.phantomVariant, tmp.string());
-  fs::rename(tmp, dir);  // a folder with case.json is always complete
+  std::error_code ec;
+  fs::rename(tmp, dir, ec);  // a folder with case.json is always complete
+  if (ec) {
+    fs::remove_all(tmp);
+    if (!fs::is_regular_file(file)) throw std::runtime_error("cannot store the phantom in " + dir.string() + ": " + ec.message());
+  }
   return file.string();
 }
 

@@ -29,9 +29,9 @@ void WebSocketSession::onAccept(beast::error_code ec) {
   if (ec) return;
   std::weak_ptr<WebSocketSession> weak = shared_from_this();
   // Replies come from solver threads: hop onto this connection's strand.
-  planning_ = std::make_shared<server::PlanningSession>(service_, [weak](const std::string& text) {
+  planning_ = std::make_shared<server::PlanningSession>(service_, [weak](const std::string& bytes, bool binary) {
     if (auto self = weak.lock())
-      boost::asio::post(self->ws_.get_executor(), [self, text] { self->queue(text); });
+      boost::asio::post(self->ws_.get_executor(), [self, bytes, binary] { self->queue(bytes, binary); });
   });
   planning_->start();
   read();
@@ -75,10 +75,11 @@ void WebSocketSession::onRead(beast::error_code ec, std::size_t bytes) {
   read();
 }
 
-void WebSocketSession::queue(std::string text) {
+void WebSocketSession::queue(std::string bytes, bool binary) {
   if (closing_) return;
-  outboxBytes_ += text.size();
-  outbox_.push_back(std::move(text));
+  if (binary) dropWaitingFrames();  // no backlog of frames: the newest replaces those not yet started
+  outboxBytes_ += bytes.size();
+  outbox_.push_back({std::move(bytes), binary});
   if (outboxBytes_ > limits_.outboxBytes) {  // the client does not read: let it go
     closing_ = true;
     planning_->close();
@@ -88,15 +89,27 @@ void WebSocketSession::queue(std::string text) {
   if (outbox_.size() == 1) write();
 }
 
+void WebSocketSession::dropWaitingFrames() {
+  if (outbox_.size() < 2) return;  // the front one is being written
+  for (auto it = outbox_.begin() + 1; it != outbox_.end();) {
+    if (!it->binary) {
+      ++it;
+      continue;
+    }
+    outboxBytes_ -= it->bytes.size();
+    it = outbox_.erase(it);
+  }
+}
+
 void WebSocketSession::write() {
-  ws_.text(true);
-  ws_.async_write(boost::asio::buffer(outbox_.front()),
+  ws_.binary(outbox_.front().binary);
+  ws_.async_write(boost::asio::buffer(outbox_.front().bytes),
                   beast::bind_front_handler(&WebSocketSession::onWrite, shared_from_this()));
 }
 
 void WebSocketSession::onWrite(beast::error_code ec, std::size_t) {
   if (ec) return;
-  outboxBytes_ -= outbox_.front().size();
+  outboxBytes_ -= outbox_.front().bytes.size();
   outbox_.pop_front();
   if (!outbox_.empty()) write();
 }

@@ -36,7 +36,9 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   void onAccept(boost::beast::error_code ec);
   void read();
   void onRead(boost::beast::error_code ec, std::size_t bytes);
-  void queue(std::string text);  // on the strand
+  // On the strand. A new frame replaces frames still waiting (not the one being written).
+  void queue(std::string bytes, bool binary);
+  void dropWaitingFrames();
   void write();
   void onWrite(boost::beast::error_code ec, std::size_t bytes);
 
@@ -47,7 +49,11 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   std::string message_;
   std::size_t messageBytes_ = 0;
   bool discarding_ = false;
-  std::deque<std::string> outbox_;
+  struct Outgoing {
+    std::string bytes;
+    bool binary;
+  };
+  std::deque<Outgoing> outbox_;
   std::size_t outboxBytes_ = 0;
   bool closing_ = false;
   std::shared_ptr<server::PlanningSession> planning_;

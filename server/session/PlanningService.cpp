@@ -8,9 +8,9 @@ namespace orthosim::server {
 PlanningService::PlanningService(PlanningOptions options)
     : options_(std::move(options)),
       cases_(options_.cases, options_.dataDir),
-      previewPool_(static_cast<std::size_t>(std::max(1, options_.previewThreads))),
       fineJobs_(options_.fineWorkers, options_.fineQueue),
-      plans_(options_.dataDir / "plans") {}
+      plans_(options_.dataDir / "plans"),
+      previewPool_(static_cast<std::size_t>(std::max(1, options_.previewThreads))) {}
 
 PlanningService::~PlanningService() { shutdown(); }
 
@@ -45,6 +45,8 @@ void PlanningService::shutdown() {
   fineJobs_.shutdown();
   previewPool_.stop();  // queued previews never start; running ones see their session's cancel
   previewPool_.join();
+  renderPool_.stop();
+  renderPool_.join();
 }
 
 }  // namespace orthosim::server

@@ -35,6 +35,8 @@ class PlanningService {
 
   CaseLibrary& cases() { return cases_; }
   boost::asio::thread_pool& previewPool() { return previewPool_; }
+  // One thread draws every session's frames: each session's renderer is used by one thread.
+  boost::asio::thread_pool& renderPool() { return renderPool_; }
   JobQueue& fineJobs() { return fineJobs_; }
   PlanStore& plans() { return plans_; }
   ExportStore& exports() { return exports_; }
@@ -55,11 +57,13 @@ class PlanningService {
  private:
   PlanningOptions options_;
   CaseLibrary cases_;
-  boost::asio::thread_pool previewPool_;
   JobQueue fineJobs_;
   PlanStore plans_;
   ExportStore exports_;
   std::atomic<int> sessions_{0};
+  // Last, so destroyed first: work they still hold may end a session, which uses the members above.
+  boost::asio::thread_pool previewPool_;
+  boost::asio::thread_pool renderPool_{1};
 };
 
 }  // namespace orthosim::server

@@ -6,6 +6,7 @@
 #include "eval/SkinFigures.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "scene/Osteotomy.hpp"
+#include "render/SurfaceDifference.hpp"
 #include "session/SolveFiguresJson.hpp"
 #include "solver/Model.hpp"
 #include "solver/NewtonSolver.hpp"
@@ -86,7 +87,11 @@ std::vector<FragmentInfo> movableFragments(const CaseModel& m) {
 }  // namespace
 
 PlanningSession::PlanningSession(PlanningService& service, Send send)
-    : service_(service), send_(std::move(send)), id_(randomHexId()), work_(service.previewPool()) {}
+    : service_(service),
+      send_(std::move(send)),
+      id_(randomHexId()),
+      work_(service.previewPool()),
+      frames_(service.renderPool()) {}
 
 PlanningSession::~PlanningSession() { close(); }
 
@@ -106,6 +111,7 @@ void PlanningSession::close() {
     closed_ = true;
   }
   work_.close();
+  frames_.close();
   service_.fineJobs().cancelOwner(id_);
 }
 
@@ -115,7 +121,7 @@ void PlanningSession::reply(json message, const json& id) {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (closed_) return;
   }
-  send_(message.dump());
+  send_(message.dump(), false);
 }
 
 void PlanningSession::sendError(const std::string& code, const std::string& message, const std::string& path,
@@ -168,7 +174,8 @@ void PlanningSession::dispatch(const std::string& type, MessageReader& r, const 
       {"reset", &PlanningSession::reset},          {"preview", &PlanningSession::preview},
       {"confirm", &PlanningSession::confirm},      {"cancel", &PlanningSession::cancel},
       {"list_plans", &PlanningSession::listPlans}, {"save_plan", &PlanningSession::savePlan},
-      {"load_plan", &PlanningSession::loadPlan},   {"export", &PlanningSession::exportSkin}};
+      {"load_plan", &PlanningSession::loadPlan},   {"export", &PlanningSession::exportSkin},
+      {"view", &PlanningSession::view}};
   auto it = handlers.find(type);
   if (it == handlers.end()) {
     std::string known;
@@ -223,11 +230,13 @@ void PlanningSession::open(MessageReader& r, const json& id) {
           self->open_ = c;
           self->opening_.clear();
           self->poses_.clear();
+          self->view_ = std::make_shared<SessionView>(c->coarse);
           opened = self->caseJson(*c);
         }
         opened["type"] = "opened";
         opened["seconds"] = secondsSince(t0);
         self->reply(std::move(opened), id);
+        self->requestFrame();
       },
       false);
 }
@@ -412,6 +421,15 @@ void PlanningSession::runPreview(const std::shared_ptr<OpenCase>& c, long long s
                  id);
   }
   c->lastGood = result.state;
+  std::shared_ptr<SessionView> view;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (open_ == c) view = view_;
+  }
+  if (view) {
+    view->postState(result.state);
+    requestFrame();
+  }
   json posesOut = json::object();
   for (const FragmentInfo& f : c->fragments) {
     auto it = poses.find(f.name);
@@ -498,7 +516,10 @@ void PlanningSession::runFine(long long job, const std::shared_ptr<OpenCase>& c,
       if (c->previewPoses == poses) coarseX = c->previewX;
     }
     json message = {{"type", "job_done"}, {"job", job}, {"case", c->id}, {"figures", std::move(figures)}};
-    if (coarseX) message["coarse_vs_fine"] = skinDifferenceJson(*c->coarse, *coarseX, *fine, done->x);
+    if (coarseX) {
+      message["coarse_vs_fine"] = skinDifferenceJson(*c->coarse, *coarseX, *fine, done->x);
+      postCoarseFineDifference(*c->coarse, *coarseX, *fine, done->x);
+    }
     reply(std::move(message), nullptr);
   } catch (const std::exception& e) {
     reply({{"type", "job_failed"}, {"job", job}, {"message", std::string("the fine job failed: ") + e.what()}}, nullptr);
@@ -625,6 +646,70 @@ void PlanningSession::exportSkin(MessageReader& r, const json& id) {
         }
       },
       false);
+}
+
+// ---- frames ----------------------------------------------------------------------------------
+
+void PlanningSession::view(MessageReader& r, const json&) {
+  requireOpen();
+  const ViewRequest request = readViewRequest(r);
+  r.rejectUnknown();
+  std::shared_ptr<SessionView> v;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    v = view_;
+  }
+  if (!v) return;
+  v->postView(request);
+  requestFrame();
+}
+
+void PlanningSession::postCoarseFineDifference(const CaseModel& coarse, const Eigen::Matrix3Xd& coarseX,
+                                               const CaseModel& fine, const Eigen::Matrix3Xd& fineX) {
+  std::shared_ptr<SessionView> v;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (open_ && open_->coarse.get() == &coarse) v = view_;
+  }
+  if (!v || coarse.skinEmbedding.numPoints() != fine.skinEmbedding.numPoints()) return;
+  // Positive where the coarse prediction lies outside the fine one.
+  v->postDifference(render::signedDifference(coarse.deformedSkin(coarseX), fine.deformedSkin(fineX)));
+  requestFrame();
+}
+
+void PlanningSession::requestFrame() {
+  std::shared_ptr<SessionView> v;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (renderFailed_ || closed_) return;
+    v = view_;
+  }
+  if (!v) return;
+  auto self = shared_from_this();
+  frames_.submit(
+      [self, v](const std::atomic<bool>& cancel) {
+        if (cancel) return;  // a newer frame request takes whatever this one would have drawn
+        try {
+          Frame frame = v->render();
+          {
+            const std::lock_guard<std::mutex> lock(self->mutex_);
+            if (self->closed_) return;
+          }
+          self->send_(std::string(frame.jpeg.begin(), frame.jpeg.end()), true);
+          frame.info["type"] = "frame";
+          self->reply(std::move(frame.info), nullptr);
+        } catch (const std::exception& e) {
+          {
+            const std::lock_guard<std::mutex> lock(self->mutex_);
+            self->renderFailed_ = true;
+          }
+          self->sendError("render_unavailable",
+                          std::string("frames cannot be drawn on this server: ") + e.what() +
+                              "; previews, jobs and figures still work",
+                          "", nullptr);
+        }
+      },
+      true);
 }
 
 }  // namespace orthosim::server

@@ -16,12 +16,14 @@
 #include "session/MessageReader.hpp"
 #include "session/PlanningService.hpp"
 #include "session/SerialWork.hpp"
+#include "session/SessionView.hpp"
 
 namespace orthosim::server {
 
 class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
  public:
-  using Send = std::function<void(const std::string& text)>;
+  // Sends a text message, or a binary one (a JPEG frame); callable from any thread.
+  using Send = std::function<void(const std::string& bytes, bool binary)>;
 
   PlanningSession(PlanningService& service, Send send);
   ~PlanningSession();
@@ -51,6 +53,10 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   void savePlan(MessageReader& r, const nlohmann::json& id);
   void loadPlan(MessageReader& r, const nlohmann::json& id);
   void exportSkin(MessageReader& r, const nlohmann::json& id);
+  void view(MessageReader& r, const nlohmann::json& id);
+  void requestFrame();
+  void postCoarseFineDifference(const CaseModel& coarse, const Eigen::Matrix3Xd& coarseX, const CaseModel& fine,
+                                const Eigen::Matrix3Xd& fineX);
 
   std::shared_ptr<OpenCase> requireOpen() const;  // throws case_not_open
   std::map<std::string, AnatomicalPose> readPoses(MessageReader r, const OpenCase& c) const;
@@ -70,6 +76,7 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   Send send_;
   std::string id_;
   SerialWork work_;
+  SerialWork frames_;  // on the render thread; each frame supersedes the one before
   mutable std::mutex mutex_;
   bool closed_ = false;
   std::shared_ptr<OpenCase> open_;
@@ -77,6 +84,8 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   std::map<std::string, AnatomicalPose> poses_;
   long long previewSeq_ = 0;
   std::shared_ptr<const FineResult> fine_;  // the newest finished fine job
+  std::shared_ptr<SessionView> view_;       // of the open case
+  bool renderFailed_ = false;               // said once; no frames after
 };
 
 }  // namespace orthosim::server

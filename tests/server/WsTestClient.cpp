@@ -77,6 +77,12 @@ nlohmann::json WsTestClient::next(std::chrono::milliseconds timeout) {
     throw std::runtime_error("no message within " + std::to_string(timeout.count()) + " ms");
   }
   if (ec) throw std::runtime_error("WebSocket read failed: " + ec.message());
+  if (ws_.got_binary()) {  // a frame: kept aside, announced as a message of its own
+    lastBinary_ = beast::buffers_to_string(buffer.data());
+    nlohmann::json message = {{"type", "binary"}, {"bytes", lastBinary_.size()}};
+    received_.push_back(message);
+    return message;
+  }
   nlohmann::json message = nlohmann::json::parse(beast::buffers_to_string(buffer.data()));
   received_.push_back(message);
   return message;

@@ -38,6 +38,8 @@ class WsTestClient {
   void close();
 
   const nlohmann::json& welcome() const { return welcome_; }
+  // Binary messages (frames) arrive as {"type": "binary", "bytes": N}; this is the newest one's content.
+  const std::string& lastBinary() const { return lastBinary_; }
   const std::vector<nlohmann::json>& received() const { return received_; }
 
  private:
@@ -45,7 +47,8 @@ class WsTestClient {
   boost::beast::websocket::stream<boost::beast::tcp_stream> ws_;
   nlohmann::json welcome_;
   std::vector<nlohmann::json> received_;
-  std::deque<nlohmann::json> pending_;  // read while waiting for a reply, not yet handed out
+  std::deque<nlohmann::json> pending_;
+  std::string lastBinary_;  // read while waiting for a reply, not yet handed out
   int nextId_ = 1;
 };
 

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# What the browser test needs besides the build (scripts/setup-deps.sh): Debian's Chromium, Node.js
+# with npm, and playwright-core from the npm registry (tests/web/package-lock.json).
+# Idempotent: installs only what is missing.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+PACKAGES=(chromium nodejs npm)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup-test-deps: installing ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+if [ ! -d tests/web/node_modules/playwright-core ]; then
+  echo "setup-test-deps: npm ci in tests/web"
+  npm ci --prefix tests/web --no-audit --no-fund --loglevel=error
+fi

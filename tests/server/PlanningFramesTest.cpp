@@ -1,0 +1,92 @@
+// Frames of the predicted face streamed over the session's WebSocket: one after opening, one after
+// each preview and view change, never a backlog.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "ServerProcess.hpp"
+#include "WsTestClient.hpp"
+
+namespace orthosim {
+namespace {
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+bool isJpeg(const std::string& b) { return b.size() > 3 && b.compare(0, 3, "\xFF\xD8\xFF") == 0; }
+
+// Waits for a frame's binary message and the "frame" message that follows it.
+json nextFrame(test::WsTestClient& ws) {
+  ws.waitFor("binary", 60s);
+  EXPECT_TRUE(isJpeg(ws.lastBinary()));
+  return ws.waitFor("frame", 10s);
+}
+
+class PlanningFrames : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ws_ = std::make_unique<test::WsTestClient>(server_.port());
+    ws_->request({{"type", "open"}, {"case", "phantom-0"}});
+    ws_->waitFor("opened", 120s);
+  }
+  test::ServerProcess server_;
+  std::unique_ptr<test::WsTestClient> ws_;
+};
+
+TEST_F(PlanningFrames, AFrameAfterOpeningAndAfterEachPreview) {
+  const json first = nextFrame(*ws_);
+  EXPECT_EQ(first["width"], 800);
+  EXPECT_EQ(first["height"], 600);
+  EXPECT_EQ(first["view"], "frontal");
+  const std::string rest = ws_->lastBinary();
+  ws_->send({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 8}}}}}});
+  ws_->waitFor("preview");
+  nextFrame(*ws_);
+  EXPECT_NE(ws_->lastBinary(), rest) << "the moved face looks different";
+}
+
+TEST_F(PlanningFrames, ViewChangesDrawNewFrames) {
+  nextFrame(*ws_);
+  const std::string frontal = ws_->lastBinary();
+  ws_->send({{"type", "view"}, {"preset", "profile"}, {"size", {400, 300}}, {"colormap", "displacement"}, {"bones", true}});
+  const json f = nextFrame(*ws_);
+  EXPECT_EQ(f["view"], "profile");
+  EXPECT_EQ(f["colormap"], "displacement");
+  EXPECT_EQ(f["width"], 400);
+  EXPECT_EQ(f["height"], 300);
+  EXPECT_NE(ws_->lastBinary(), frontal);
+}
+
+TEST_F(PlanningFrames, ABurstOfCameraMovesLeavesNoBacklog) {
+  nextFrame(*ws_);
+  const int moves = 40;
+  for (int i = 0; i < moves; ++i) ws_->send({{"type", "view"}, {"orbit", {3, 0}}});
+  ws_->send({{"type", "describe"}});  // answered in order: every view message was read before it
+  ws_->waitFor("case", 10s);
+  int frames = 0;
+  for (;;) {
+    try {
+      ws_->waitFor("frame", 3s);
+      ++frames;
+    } catch (const std::runtime_error&) {
+      break;  // quiet: the newest frame has come
+    }
+  }
+  EXPECT_GE(frames, 1);
+  EXPECT_LT(frames, moves) << "frames still waiting are replaced by newer ones";
+}
+
+TEST_F(PlanningFrames, BadViewRequestsAreRefused) {
+  ws_->send({{"type", "view"}, {"preset", "upside_down"}});
+  json e = ws_->waitFor("error", 10s);
+  EXPECT_EQ(e["path"], "/preset");
+  EXPECT_NE(e["message"].get<std::string>().find("profile"), std::string::npos) << "lists the views";
+  ws_->send({{"type", "view"}, {"size", {100000, 5}}});
+  EXPECT_EQ(ws_->waitFor("error", 10s)["path"], "/size");
+  ws_->send({{"type", "view"}, {"orbit", {"a", 1}}});
+  EXPECT_EQ(ws_->waitFor("error", 10s)["path"], "/orbit");
+  ws_->send({{"type", "view"}, {"zoom", 0}});
+  EXPECT_EQ(ws_->waitFor("error", 10s)["path"], "/zoom");
+}
+
+}  // namespace
+}  // namespace orthosim
