@@ -92,6 +92,26 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.05, 1.0));
   render->add_flag("--before-after", renderOptions.beforeAfter, "Rest (left) and predicted (right) side by side");
 
+  orthosim::cli::CompareOptions compareOptions;
+  auto* compare = app.add_subcommand("compare", "Error of a predicted skin against a reference surface (signed distance, "
+                                                "area within 1-4 mm, face region, soft-tissue landmarks)");
+  compare->add_option("predicted", compareOptions.predicted, "Predicted skin (.stl, .obj, .ply), e.g. a solve's skin.obj")
+      ->required()->check(CLI::ExistingFile);
+  compare->add_option("reference", compareOptions.reference, "Reference surface: a finer solve or a post-operative scan")
+      ->required()->check(CLI::ExistingFile);
+  auto* compareCase = compare->add_option("--case", compareOptions.casePath, "The case (JSON): face region from its frame and landmarks, "
+                                                         "landmark errors on its rest skin")->check(CLI::ExistingFile);
+  compare->add_option("--rest", compareOptions.restPath, "With --case: the rest skin with the predicted skin's triangles "
+                                                         "(a solve's skin_rest.obj; default: the case's skin)")
+      ->check(CLI::ExistingFile)->needs(compareCase);
+  compare->add_option("--map", compareOptions.mapPath, "Write the predicted skin coloured by its error (.ply or .obj)");
+  compare->add_option("--image", compareOptions.imagePath, "Render the error map of the predicted skin (.png or .jpg)");
+  compare->add_option("--view", compareOptions.view, "The image's view: frontal, profile, profile_left, three_quarter, "
+                                                     "three_quarter_left, worms_eye, birds_eye");
+  compare->add_option("--range", compareOptions.rangeMm, "Colour range of the map and image, +-mm (default 3)")
+      ->check(CLI::Range(0.01, 1000.0));
+  compare->add_option("--json", compareOptions.jsonPath, "Also write the figures to this JSON file");
+
   orthosim::cli::ServeOptions serveOptions;
   serveOptions.webDir = ORTHOSIM_WEB_DIR;
   auto* serve = app.add_subcommand("serve", "Serve the planning API and the browser page over HTTP");
@@ -146,6 +166,7 @@ int main(int argc, char** argv) {
       if (renderNoCache) renderOptions.cacheDir.clear();
       return orthosim::cli::runRender(renderCase, renderOptions);
     }
+    if (*compare) return orthosim::cli::runCompare(compareOptions);
   } catch (const std::exception& e) {
     std::cerr << "orthosim: " << e.what() << "\n";
     return 1;

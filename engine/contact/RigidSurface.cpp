@@ -28,6 +28,7 @@ Eigen::Vector3d vec(const Kernel::Point_3& p) { return {p.x(), p.y(), p.z()}; }
 struct RigidSurface::Impl {
   std::vector<Triangle> triangles;
   std::vector<Eigen::Vector3i> corners;          // vertex indices per kept triangle
+  std::vector<int> source;                       // its column in the surface given
   std::vector<Eigen::Vector3d> faceNormal;       // unit
   std::vector<Eigen::Vector3d> vertexNormal;     // angle-weighted pseudo-normals
   std::map<std::pair<int, int>, Eigen::Vector3d> edgeNormal;  // sum of the two face normals
@@ -77,6 +78,7 @@ RigidSurface::RigidSurface(const SurfaceMesh& s) : impl_(std::make_unique<Impl>(
     m.triangles.emplace_back(Kernel::Point_3(p[0].x(), p[0].y(), p[0].z()), Kernel::Point_3(p[1].x(), p[1].y(), p[1].z()),
                              Kernel::Point_3(p[2].x(), p[2].y(), p[2].z()));
     m.corners.push_back(c);
+    m.source.push_back(t);
     m.faceNormal.push_back(n.normalized());
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d e1 = (p[(k + 1) % 3] - p[k]).normalized(), e2 = (p[(k + 2) % 3] - p[k]).normalized();
@@ -106,6 +108,7 @@ SurfacePoint RigidSurface::query(const Eigen::Vector3d& p) const {
   const int t = static_cast<int>(primitive - impl_->triangles.cbegin());
   SurfacePoint out;
   out.closest = vec(point);
+  out.triangle = impl_->source[t];
   const Eigen::Vector3d d = p - out.closest;
   const double len = d.norm();
   bool border = false;

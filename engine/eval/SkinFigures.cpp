@@ -1,13 +1,13 @@
 #include "eval/SkinFigures.hpp"
 
+#include "eval/VertexAreas.hpp"
+
 namespace orthosim {
 
 SkinFigureProbe::SkinFigureProbe(const CaseModel& model, double skinTolerance) {
   const SurfaceMesh& skin = model.tissue.skin;
   if (skin.numVertices() == 0) return;
-  vertexArea_ = Eigen::VectorXd::Zero(skin.numVertices());
-  for (int t = 0; t < skin.numTriangles(); ++t)
-    for (int k = 0; k < 3; ++k) vertexArea_(skin.triangles(k, t)) += skin.areaVector(t).norm() / 6.0;  // |w| = 2 area
+  vertexArea_ = vertexAreas(skin);
   std::vector<Eigen::Vector3d> points;
   for (const auto& [name, p] : model.spec.landmarks) {
     const double d2 = (skin.vertices.colwise() - p).colwise().squaredNorm().minCoeff();

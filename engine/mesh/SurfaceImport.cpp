@@ -177,15 +177,19 @@ SurfaceMesh importSurface(const std::string& path) {
 
 namespace {
 
-const char* exporterId(Format format, SurfaceEncoding encoding) {
-  const bool binary = encoding == SurfaceEncoding::Binary;
+// Assimp 5.2's binary PLY writer declares uchar colours but writes them as floats, a file no reader
+// can parse: coloured PLY is written as ASCII.
+const char* exporterId(Format format, SurfaceEncoding encoding, bool coloured = false) {
+  const bool binary = encoding == SurfaceEncoding::Binary && !coloured;
   return format == Format::Stl   ? (binary ? "stlb" : "stl")
          : format == Format::Ply ? (binary ? "plyb" : "ply")
                                  : "objnomtl";  // no .mtl beside it
 }
 
-// The mesh as an assimp scene for `format`; `path` names the target in errors.
-std::unique_ptr<aiScene> exportScene(const SurfaceMesh& mesh, Format format, const std::string& path) {
+// The mesh as an assimp scene for `format`, with RGB vertex colours when `colours` is given; `path`
+// names the target in errors.
+std::unique_ptr<aiScene> exportScene(const SurfaceMesh& mesh, Format format, const std::string& path,
+                                     const Eigen::Matrix3Xf* colours = nullptr) {
   if (mesh.numTriangles() == 0) throw std::runtime_error(path + ": cannot export: no triangles");
   if (mesh.hasUv() && mesh.uv.cols() != mesh.vertices.cols())
     throw std::runtime_error(path + ": cannot export: " + std::to_string(mesh.uv.cols()) +
@@ -195,6 +199,10 @@ std::unique_ptr<aiScene> exportScene(const SurfaceMesh& mesh, Format format, con
       if (mesh.triangles(k, t) < 0 || mesh.triangles(k, t) >= mesh.numVertices())
         throw std::runtime_error(path + ": cannot export: triangle " + std::to_string(t) + " refers to vertex " +
                                  std::to_string(mesh.triangles(k, t)) + " of " + std::to_string(mesh.numVertices()));
+  if (colours && format == Format::Stl) throw std::runtime_error(path + ": cannot export vertex colours to STL (use .ply or .obj)");
+  if (colours && colours->cols() != mesh.vertices.cols())
+    throw std::runtime_error(path + ": cannot export: " + std::to_string(colours->cols()) + " colours for " +
+                             std::to_string(mesh.numVertices()) + " vertices");
 
   auto scene = std::make_unique<aiScene>();  // owns everything below
   scene->mRootNode = new aiNode();
@@ -244,6 +252,13 @@ std::unique_ptr<aiScene> exportScene(const SurfaceMesh& mesh, Format format, con
       am.mNumUVComponents[0] = 2;
       for (unsigned v = 0; v < nv; ++v) am.mTextureCoords[0][v] = aiVector3D(ai_real(mesh.uv(0, v)), ai_real(mesh.uv(1, v)), 0);
     }
+    if (colours) {
+      am.mColors[0] = new aiColor4D[nv];
+      for (unsigned v = 0; v < nv; ++v) {
+        const Eigen::Vector3f c = colours->col(v).cwiseMax(0.0f).cwiseMin(1.0f);
+        am.mColors[0][v] = aiColor4D(c.x(), c.y(), c.z(), 1.0f);
+      }
+    }
     for (unsigned t = 0; t < nt; ++t) {
       am.mFaces[t].mNumIndices = 3;
       am.mFaces[t].mIndices = new unsigned[3];
@@ -261,6 +276,15 @@ void exportSurface(const SurfaceMesh& mesh, const std::string& path, SurfaceEnco
   const std::unique_ptr<aiScene> scene = exportScene(mesh, format, path);
   Assimp::Exporter exporter;
   if (exporter.Export(scene.get(), exporterId(format, encoding), path) != AI_SUCCESS)
+    throw std::runtime_error(path + ": cannot write: " + exporter.GetErrorString());
+}
+
+void exportSurface(const SurfaceMesh& mesh, const Eigen::Matrix3Xf& vertexColours, const std::string& path,
+                   SurfaceEncoding encoding) {
+  const Format format = formatOf(path);
+  const std::unique_ptr<aiScene> scene = exportScene(mesh, format, path, &vertexColours);
+  Assimp::Exporter exporter;
+  if (exporter.Export(scene.get(), exporterId(format, encoding, true), path) != AI_SUCCESS)
     throw std::runtime_error(path + ": cannot write: " + exporter.GetErrorString());
 }
 

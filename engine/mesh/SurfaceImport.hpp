@@ -24,6 +24,11 @@ enum class SurfaceEncoding { Binary, Ascii };  // OBJ is always ASCII
 // std::runtime_error naming the file when the mesh is invalid or the write fails.
 void exportSurface(const SurfaceMesh& mesh, const std::string& path,
                    SurfaceEncoding encoding = SurfaceEncoding::Binary);
+// The same with RGB vertex colours in [0, 1], one column per vertex: PLY (uchar red, green, blue,
+// alpha; always ASCII, as assimp 5.2's binary PLY writer garbles colours) or OBJ ("v x y z r g b");
+// STL has no vertex colours and is refused.
+void exportSurface(const SurfaceMesh& mesh, const Eigen::Matrix3Xf& vertexColours, const std::string& path,
+                   SurfaceEncoding encoding = SurfaceEncoding::Binary);
 
 // The same file's bytes in memory (a download): `extension` is "stl", "obj" or "ply" (any case).
 // Throws std::runtime_error for another extension or an invalid mesh.

@@ -2,6 +2,7 @@
 
 #include <turbojpeg.h>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "render/JpegEncoder.hpp"
 #include "render/PngFile.hpp"
 #include "render/RenderError.hpp"
 
@@ -47,6 +49,17 @@ RgbImage readImage(const std::string& path) {
   static const unsigned char pngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
   if (bytes.size() >= 8 && std::equal(pngSignature, pngSignature + 8, bytes.begin())) return readPng(path);
   throw RenderError(path + ": not a JPEG or PNG image");
+}
+
+void writeImage(const RgbImage& image, const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".png") return writePng(image, path);
+  if (ext != ".jpg" && ext != ".jpeg") throw RenderError(path + ": the image file must end in .png, .jpg or .jpeg");
+  const std::vector<unsigned char> bytes = JpegEncoder(92).encode(image);
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw RenderError(path + ": cannot write the image file");
 }
 
 }  // namespace orthosim::render

@@ -1,10 +1,9 @@
 #include "render/SurfaceDifference.hpp"
 
-#include <memory>
 #include <stdexcept>
 #include <string>
 
-#include "contact/RigidSurface.hpp"
+#include "eval/SurfaceError.hpp"
 #include "render/RenderError.hpp"
 
 namespace orthosim::render {
@@ -26,15 +25,11 @@ Eigen::VectorXd signedDifference(const SurfaceMesh& surface, const SurfaceMesh& 
 }
 
 Eigen::VectorXd signedDistances(const Eigen::Matrix3Xd& points, const SurfaceMesh& reference) {
-  std::unique_ptr<RigidSurface> surface;
   try {
-    surface = std::make_unique<RigidSurface>(reference);
+    return signedDistancesTo(points, reference);
   } catch (const std::invalid_argument& e) {
-    throw RenderError(std::string("reference surface: ") + e.what());
+    throw RenderError(e.what());
   }
-  Eigen::VectorXd d(points.cols());
-  for (Eigen::Index i = 0; i < points.cols(); ++i) d[i] = surface->query(points.col(i)).distance;
-  return d;
 }
 
 }  // namespace orthosim::render

@@ -18,8 +18,8 @@ Eigen::VectorXd signedDifference(const SurfaceMesh& surface, const SurfaceMesh& 
 
 // Signed distance in mm from each point to `reference`, a surface of any topology in the same
 // frame (e.g. a post-operative scan): positive outside it, negative inside, the sign from the
-// pseudo-normal of the nearest feature (contact/RigidSurface.hpp). Throws RenderError naming the
-// defect of a reference without triangles or with bad indices.
+// pseudo-normal of the nearest feature (eval/SurfaceError.hpp, as `orthosim compare` measures it).
+// Throws RenderError naming the defect of a reference without triangles or with bad indices.
 Eigen::VectorXd signedDistances(const Eigen::Matrix3Xd& points, const SurfaceMesh& reference);
 
 }  // namespace orthosim::render

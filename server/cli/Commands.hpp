@@ -76,6 +76,21 @@ int runRenderBench(const RenderBenchOptions& options);
 // Writes the built-in phantom head (variant N) as a surface-based case under outDir.
 int runPhantom(int variant, const std::string& outDir);
 
+struct CompareOptions {
+  std::string predicted;  // surface file (.stl, .obj, .ply): the predicted skin
+  std::string reference;  // surface file: a finer solve, or a post-operative scan
+  std::string casePath;   // optional case: region of interest, landmarks (and its skin as the rest skin)
+  std::string restPath;   // optional rest skin with the predicted skin's triangles (a solve's skin_rest.obj)
+  std::string mapPath;    // optional coloured error map (.ply or .obj with vertex colours)
+  std::string imagePath;  // optional rendered error map (.png or .jpg, engine/render)
+  std::string view = "frontal";  // its clinical view (render/ClinicalView.hpp)
+  std::string jsonPath;   // optional machine-readable copy of the figures
+  double rangeMm = 3.0;   // the map's colour range, +-mm
+};
+// Prints the surface error (whole skin and face region) and the soft-tissue landmark errors;
+// 0 when measured, 1 on bad input (missing or unreadable file, empty mesh, bad case).
+int runCompare(const CompareOptions& options);
+
 struct ServeOptions {
   std::string host = "127.0.0.1";
   int port = 8080;     // 0: any free port; the chosen one is printed as "listening on http://HOST:PORT"

@@ -1,17 +1,13 @@
 // `orthosim render CASE --plan PLAN.json --view profile --out face.png`: builds the case's model,
 // solves the plan and renders the predicted face off-screen (EGL), without a server.
-#include <cctype>
 #include <chrono>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include "cli/Commands.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "render/CaseView.hpp"
 #include "render/ClinicalView.hpp"
-#include "render/JpegEncoder.hpp"
-#include "render/PngFile.hpp"
+#include "render/ImageFile.hpp"
 #include "render/RenderError.hpp"
 #include "render/SurfaceDifference.hpp"
 #include "scene/PlanFile.hpp"
@@ -19,8 +15,6 @@
 
 namespace orthosim::cli {
 namespace {
-
-namespace fs = std::filesystem;
 
 struct SolvedCase {
   CaseModel model;
@@ -34,18 +28,6 @@ SolvedCase solveCase(const CaseSpec& spec, Resolution resolution, const std::str
   s.result = solveScene(model);
   if (!s.result.converged) std::cerr << "orthosim: " << resolutionName(resolution) << " solve: " << s.result.error << "\n";
   return s;
-}
-
-// The file's format from its name: .png (lossless) or .jpg/.jpeg.
-void writeImage(const RgbImage& image, const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".png") return render::writePng(image, path);
-  if (ext != ".jpg" && ext != ".jpeg") throw render::RenderError(path + ": the image file must end in .png, .jpg or .jpeg");
-  const std::vector<unsigned char> bytes = render::JpegEncoder(92).encode(image);
-  std::ofstream out(path, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw render::RenderError(path + ": cannot write the image file");
 }
 
 render::RenderOptions renderOptions(const RenderCommandOptions& o) {
@@ -97,7 +79,7 @@ int runRender(const std::string& casePath, const RenderCommandOptions& o) {
   if (options.colorMap == render::ColorMap::Difference) renderer.setSkinValues(differenceValues(solved, o));
   const render::Camera camera =
       render::clinicalCamera(view, spec.frame, framedPoints(renderer, solved.model), renderer.viewAspect(options));
-  writeImage(renderer.render(camera, options), o.out);
+  render::writeImage(renderer.render(camera, options), o.out);
   std::cout << "rendered the " << o.view << " view of '" << spec.name << "' (" << resolutionName(o.resolution) << ", "
             << solved.model.tissue.skin.numTriangles() << " skin triangles, plan solved "
             << (solved.result.converged ? "" : "NOT ") << "to convergence) in "

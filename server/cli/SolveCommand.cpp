@@ -87,6 +87,9 @@ int runSolve(const std::string& scenePath, const std::string& outDir, const Solv
         const fs::path tmp = fs::path(outDir) / "skin.tmp.obj";
         exportSurface(caseModel->deformedSkin(result.state.x), tmp.string());
         fs::rename(tmp, fs::path(outDir) / "skin.obj");
+        // The same skin at rest (same triangles): where `orthosim compare --rest` places landmarks.
+        exportSurface(caseModel->tissue.skin, tmp.string());
+        fs::rename(tmp, fs::path(outDir) / "skin_rest.obj");
       }
       json["case"] = caseJson(*caseModel);
     }

@@ -22,7 +22,7 @@ TEST(DemoCommand, WritesThePhantomCaseAndSolvesItsPlan) {
   ASSERT_EQ(std::system(demo.c_str()), 0);
   for (const char* f : {"case/case.json", "case/skin.obj", "case/skin.jpg", "case/skull.stl", "case/mandible.stl",
                         "case/oral_cavity.stl", "case/landmarks.json", "result/result.json", "result/skin.obj",
-                        "result/deformed.node"})
+                        "result/skin_rest.obj", "result/deformed.node"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
   std::ifstream in(dir / "result" / "result.json");
   const nlohmann::json r = nlohmann::json::parse(in);
@@ -30,6 +30,25 @@ TEST(DemoCommand, WritesThePhantomCaseAndSolvesItsPlan) {
   EXPECT_GT(r["max_displacement_mm"].get<double>(), 4.9);  // the maxilla moves 5 mm
   EXPECT_LT(r["max_displacement_mm"].get<double>(), 8.0);   // tissue squeezed ahead of it may move a little more
   EXPECT_GT(r["min_det_f"].get<double>(), 0.0);
+
+  // The solved skin against its rest (skin_rest.obj, same triangles): every soft-tissue landmark is
+  // placed, and the upper lip follows the 5 mm maxillary advancement most of the way.
+  const std::string compare = std::string(ORTHOSIM_CLI) + " compare " + (dir / "result" / "skin.obj").string() + " " +
+                              (dir / "result" / "skin_rest.obj").string() + " --case " + (dir / "case" / "case.json").string() +
+                              " --rest " + (dir / "result" / "skin_rest.obj").string() + " --json " +
+                              (dir / "compare.json").string() + " > /dev/null";
+  ASSERT_EQ(std::system(compare.c_str()), 0);
+  std::ifstream cmp(dir / "compare.json");
+  const nlohmann::json c = nlohmann::json::parse(cmp);
+  ASSERT_TRUE(c["region_of_interest"].is_object()) << c["region_note"];
+  for (const auto& l : c["landmarks"]) {
+    ASSERT_EQ(l["status"], "measured") << l["name"] << ": " << l["note"];
+    if (l["name"] == "labrale_superius") {
+      EXPECT_GT(l["error_anterior_superior_right_mm"][0].get<double>(), 3.0);
+      EXPECT_LT(l["error_anterior_superior_right_mm"][0].get<double>(), 5.0);
+    }
+    if (l["name"] == "soft_pogonion") EXPECT_LT(l["error_mm"].get<double>(), 0.5);  // the mandible stays
+  }
 
   // The case it wrote is an ordinary case: solving it again (from the cache) gives the same nodes.
   const std::string solve = std::string(ORTHOSIM_CLI) + " solve " + (dir / "case" / "case.json").string() +
