@@ -78,7 +78,7 @@ RunResult runConfig(const CaseSpec& base, const RunConfig& cfg, int repeats, con
     result = solveScene(model);
     if (!result.converged)
       throw std::runtime_error(base.name + ", " + cfg.label + " (" + std::to_string(cfg.skinTriangles) +
-                               " skin triangles): the solve did not converge: " + result.error);
+                               " skin triangles requested): " + result.error);
     r.solveTimes.push_back(result.timings.total);
   }
   r.solveSeconds = median(r.solveTimes);
@@ -294,17 +294,29 @@ int runCohortBench(const CohortBenchOptions& opt) {
     plot.series = {{"coarse", {31, 119, 180}}, {"fine", {214, 39, 40}}, {"sweep: default tol.", {44, 160, 44}},
                    {"sweep: tol. x100 looser", {255, 127, 14}}, {"sweep: tol. x0.01 tighter", {148, 103, 189}}};
     std::vector<std::vector<MovementRatio>> allRatios;
+    std::vector<std::string> rowNames;
+    int failed = 0;
 
     for (int i = 0; i < n; ++i) {
       const CohortPatient& p = cohort[i];
       const std::string casePath = writeCohortCase(p, (data / p.id).string());
       CaseSpec spec = loadCaseFile(casePath);
       if (opt.noContact) spec.contacts.clear();
-      RunResult ref = runConfig(spec, {"reference", opt.referenceTriangles, opt.referenceToleranceScale}, 1, cacheDir);
-      RunResult coarse = runConfig(spec, {"coarse", opt.coarseTriangles, 1.0}, opt.repeats, cacheDir);
-      RunResult fine = runConfig(spec, {"fine", opt.fineTriangles, 1.0}, opt.repeats, cacheDir);
-      measure(coarse, ref);
-      measure(fine, ref);
+      RunResult ref, coarse, fine;
+      try {
+        ref = runConfig(spec, {"reference", opt.referenceTriangles, opt.referenceToleranceScale}, 1, cacheDir);
+        coarse = runConfig(spec, {"coarse", opt.coarseTriangles, 1.0}, opt.repeats, cacheDir);
+        fine = runConfig(spec, {"fine", opt.fineTriangles, 1.0}, opt.repeats, cacheDir);
+        measure(coarse, ref);
+        measure(fine, ref);
+      } catch (const std::exception& e) {
+        // A patient that cannot be measured is reported and the others go on; the exit code says so.
+        ++failed;
+        std::printf("%-4s %-10s %-22s | not measured: %s\n", p.id.c_str(), p.diagnosis.c_str(), p.procedure().c_str(), e.what());
+        std::fflush(stdout);
+        patients.push_back({{"id", p.id}, {"diagnosis", p.diagnosis}, {"procedure", p.procedure()}, {"error", e.what()}});
+        continue;
+      }
       std::printf("%-4s %-10s %-22s | %7d %6d %8.3f %6.1f%% %6.1f%% | %7d %6d %8.3f %6.1f%% %6.1f%% | %7d %7.2f\n", p.id.c_str(),
                   p.diagnosis.c_str(), p.procedure().c_str(), coarse.skinTriangles, coarse.tets, coarse.solveSeconds,
                   100 * share(coarse, 0), 100 * share(coarse, 2), fine.skinTriangles, fine.tets, fine.solveSeconds,
@@ -314,6 +326,7 @@ int runCohortBench(const CohortBenchOptions& opt) {
       plot.points.push_back({fine.solveSeconds, 100 * share(fine, 0), 1, p.id});
       const std::vector<MovementRatio> rs = ratios(fine);
       allRatios.push_back(rs);
+      rowNames.push_back(p.id);
       patients.push_back({{"id", p.id},
                           {"diagnosis", p.diagnosis},
                           {"variant", p.variant},
@@ -365,8 +378,6 @@ int runCohortBench(const CohortBenchOptions& opt) {
       std::printf(" %26s", s);
     }
     std::printf("\n");
-    std::vector<std::string> rowNames;
-    for (int i = 0; i < n; ++i) rowNames.push_back(cohort[i].id);
     json faceJson = nullptr;
     if (!opt.facePath.empty()) {
       if (!fs::exists(fs::path(opt.facePath) / "face_volume.node"))
@@ -403,6 +414,7 @@ int runCohortBench(const CohortBenchOptions& opt) {
     // Summary over the cohort.
     std::vector<double> c1, c3, f1, f3, ct, ft;
     for (const json& pj : patients) {
+      if (pj.contains("error")) continue;
       c1.push_back(pj["coarse"]["face_region"]["share_within"][0]);
       c3.push_back(pj["coarse"]["face_region"]["share_within"][2]);
       f1.push_back(pj["fine"]["face_region"]["share_within"][0]);
@@ -410,9 +422,9 @@ int runCohortBench(const CohortBenchOptions& opt) {
       ct.push_back(pj["coarse"]["solve_s"]);
       ft.push_back(pj["fine"]["solve_s"]);
     }
-    if (n > 0) std::printf("\nmedians over %d patients: coarse solve %.3f s, within 1 mm %.1f%%, 3 mm %.1f%%; fine solve %.3f s, "
+    if (!ct.empty()) std::printf("\nmedians over %d measured patients: coarse solve %.3f s, within 1 mm %.1f%%, 3 mm %.1f%%; fine solve %.3f s, "
                 "within 1 mm %.1f%%, 3 mm %.1f%%\n",
-                n, median(ct), 100 * median(c1), 100 * median(c3), median(ft), 100 * median(f1), 100 * median(f3));
+                static_cast<int>(ct.size()), median(ct), 100 * median(c1), 100 * median(c3), median(ft), 100 * median(f1), 100 * median(f3));
 
     json out = {{"reference",
                  {{"skin_triangles", opt.referenceTriangles},
@@ -426,6 +438,7 @@ int runCohortBench(const CohortBenchOptions& opt) {
                 {"patients", patients},
                 {"sweep", sweep},
                 {"ratios_outside_band", outside},
+                {"patients_not_measured", failed},
                 {"real_face_ratios", faceJson}};
     if (!opt.imagePath.empty() && !plot.points.empty()) {
       render::writeImage(render::scatterPlot(plot), opt.imagePath);
@@ -441,6 +454,10 @@ int runCohortBench(const CohortBenchOptions& opt) {
       if (!f) throw std::runtime_error(opt.jsonPath + ": cannot write the file");
     }
     if (tempData) fs::remove_all(data);
+    if (failed) {
+      std::fprintf(stderr, "orthosim bench --cohort: %d of %d patients not measured (see the table)\n", failed, n);
+      return 2;
+    }
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "orthosim bench --cohort: " << e.what() << "\n";

@@ -87,7 +87,8 @@ struct CohortBenchOptions {
   std::string dataDir;             // cohort cases and tissue cache (kept); empty: a temporary folder
 };
 // `orthosim bench --cohort`: the paper's Table 4 on the synthetic cohort, the speed-versus-error
-// plot, the soft-to-hard movement ratios. 0 when measured, 1 on bad input or a failed solve.
+// plot, the soft-to-hard movement ratios. 0 when every patient is measured, 1 on bad input, 2 when
+// a patient could not be (its row says why; the others are still measured and written).
 int runCohortBench(const CohortBenchOptions& options);
 
 // Writes the built-in phantom head (variant N) as a surface-based case under outDir.
