@@ -258,6 +258,8 @@ class HardPhantom : public ::testing::Test {
   }
 
   static HardRun solve(const std::string& name, const Scene& scene, const std::map<std::string, FragmentMotion>& plan) {
+    // targetsFromPlan ignores names it does not know: make sure the plan moves what it says.
+    for (const auto& [fragment, motion] : plan) EXPECT_TRUE(scene.fragmentIndex(fragment).has_value()) << fragment;
     Model model(scene);
     HardRun run = solveFromRest(model, plan, scene.solver);
     report(name, run.result);
