@@ -4,11 +4,12 @@
 # Idempotent: installs only what is missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-PACKAGES=(chromium nodejs npm)
 missing=()
-for p in "${PACKAGES[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
+dpkg-query -W -f='${Status}' chromium 2>/dev/null | grep -q "install ok installed" || missing+=(chromium)
+# Node.js by command, not package: a Node.js from elsewhere (NodeSource bundles npm) conflicts
+# with Debian's npm package, and any Node.js >= 18 with npm will do.
+command -v node >/dev/null || missing+=(nodejs)
+command -v npm >/dev/null || missing+=(npm)
 if [ ${#missing[@]} -gt 0 ]; then
   echo "setup-test-deps: installing ${missing[*]}"
   SUDO=""

@@ -63,6 +63,7 @@ void readSolverSettings(JsonReader r, SolverSettings& s) {
   s.substeps = r.integer("substeps", 0, 0, 10000);
   s.maxIterations = r.integer("max_iterations", s.maxIterations, 1, 1000);
   s.maxRefinements = r.integer("max_refinements", s.maxRefinements, 0, 30);
+  s.maxTotalIterations = r.integer("max_total_iterations", s.maxTotalIterations, 1, 100000);
   if (r.has("force_tolerance_n")) {
     s.forceTolerance = r.number("force_tolerance_n");
     if (s.forceTolerance <= 0) r.fail("must be positive", "force_tolerance_n");

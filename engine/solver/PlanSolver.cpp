@@ -48,12 +48,20 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
   const double nominal = settings.substeps > 0 ? 1.0 / settings.substeps : 1.0;
   const double minStep = nominal / double(1 << std::min(settings.maxRefinements, 30));
   double s = 0.0, ds = nominal;
+  int spent = 0;  // iterations of every substep so far, failed ones included
   model.factor().invalidate();  // the factor may belong to another state
   while (s < 1.0) {
+    if (spent >= settings.maxTotalIterations) {
+      r.error = "the solve did not converge within " + std::to_string(settings.maxTotalIterations) +
+                " Newton iterations (solver max_total_iterations); the state at load fraction " + std::to_string(s) +
+                " is kept";
+      break;
+    }
     const double s1 = (1.0 - s - ds < 1e-12) ? 1.0 : s + ds;
     SubstepReport rep = solveSubstep(model, targetsAt(start, targets, s1), settings, r.state, r.timings, control);
     rep.from = s;
     rep.to = s1;
+    spent += rep.iterations + rep.chordIterations;
     const bool ok = rep.converged;
     const std::string failure = rep.failure;
     r.substeps.push_back(std::move(rep));

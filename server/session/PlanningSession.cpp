@@ -494,11 +494,7 @@ void PlanningSession::runFine(long long job, const std::shared_ptr<OpenCase>& c,
     SolveControl control;
     control.cancel = &cancel;
     control.onProgress = [&](const SolveProgress& p) { progress("solve", 0.4 + 0.6 * p.loadFraction); };
-    std::map<std::string, FragmentMotion> plan;
-    for (const FragmentInfo& f : c->fragments) {
-      auto it = poses.find(f.name);
-      plan[f.name] = motionFromPose(it == poses.end() ? AnatomicalPose{} : it->second, fine->spec.frame, f.pivot);
-    }
+    const std::map<std::string, FragmentMotion> plan = c->plan(poses);  // same case file: same frame and pivots
     const SimState rest = model.restState();
     const SolveResult result = solvePlan(model, rest, model.targetsFromPlan(plan, rest), model.scene().solver, control);
     if (result.error == kCancelled) return cancelled("solve");

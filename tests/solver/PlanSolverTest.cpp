@@ -126,6 +126,24 @@ TEST(PlanSolver, FailureKeepsTheLastConvergedStateAndSaysWhy) {
   if (r.loadFraction == 0.0) EXPECT_EQ((r.state.x - s.mesh.rest).cwiseAbs().maxCoeff(), 0.0);
 }
 
+TEST(PlanSolver, GivesUpAfterItsIterationBudget) {
+  Scene s = coarseBlock();
+  s.plan["B"].translation = {0, 30, 10};  // needs several substeps (see AdaptiveSubsteps...)
+  s.plan["B"].rotation = {0, 0, 60 * kDeg};
+  s.solver.maxIterations = 4;
+  s.solver.maxTotalIterations = 6;
+  Model model(s);
+  const SolveResult r = solveScene(model);
+  EXPECT_FALSE(r.converged);
+  EXPECT_NE(r.error.find("max_total_iterations"), std::string::npos) << r.error;
+  int spent = 0;
+  for (const SubstepReport& sub : r.substeps) spent += sub.iterations + sub.chordIterations;
+  EXPECT_GE(spent, 6);
+  EXPECT_LE(spent, 6 + 2 * 4) << "stops after the substep that crossed the budget";
+  EXPECT_TRUE(r.state.x.allFinite());
+  EXPECT_GT(model.energy().minDetF(r.state.x), 0.0);
+}
+
 TEST(PlanSolver, ReportsProgressAndStopsWhenCancelled) {
   Scene s = coarseBlock();
   s.solver.substeps = 10;

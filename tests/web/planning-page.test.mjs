@@ -34,11 +34,11 @@ function startServer() {
 test("planning page: slider preview, fine confirm, screenshot", { timeout: 300000 }, async () => {
   assert.ok(cli, "ORTHOSIM_CLI must name the orthosim executable");
   const { server, port } = startServer();
-  const profile = mkdtempSync(path.join(tmpdir(), "orthosim-chromium-"));
+  const userData = mkdtempSync(path.join(tmpdir(), "orthosim-chromium-"));
   let context;
   try {
     const url = `http://127.0.0.1:${await port}/`;
-    context = await chromium.launchPersistentContext(profile, {
+    context = await chromium.launchPersistentContext(userData, {
       executablePath: "/usr/bin/chromium",
       headless: true,
       viewport: { width: 1280, height: 900 },
@@ -76,6 +76,17 @@ test("planning page: slider preview, fine confirm, screenshot", { timeout: 30000
     const solve = await page.locator("#solve-time").textContent();
     assert.match(solve, /Solved in \d+\.\d+ s/);
 
+    // View buttons and mouse orbit redraw the face.
+    await page.click('#views button[data-view="profile"]');
+    await page.waitForFunction(() => /profile view/.test(document.querySelector("#frame-info").textContent), null, { timeout: 30000 });
+    const profile = await page.locator("#frame").getAttribute("src");
+    const box = await page.locator("#frame-box").boundingBox();
+    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(box.x + box.width / 2 + 120, box.y + box.height / 2, { steps: 6 });
+    await page.mouse.up();
+    await page.waitForFunction((old) => document.querySelector("#frame").src !== old, profile, { timeout: 30000 });
+
     // Fine confirm to 100 %.
     await page.click("#confirm");
     await page.waitForFunction(() => /done/.test(document.querySelector("#job-status").textContent), null, { timeout: 240000 });
@@ -92,6 +103,6 @@ test("planning page: slider preview, fine confirm, screenshot", { timeout: 30000
   } finally {
     if (context) await context.close();
     server.kill("SIGTERM");
-    rmSync(profile, { recursive: true, force: true });
+    rmSync(userData, { recursive: true, force: true });
   }
 });
