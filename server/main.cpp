@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
                      "The synthetic cohort (ten phantom patients): coarse and fine against a finer reference, "
                      "Table 4, speed-versus-error plot, soft-to-hard movement ratios");
   benchCmd->add_option("--patients", cohort.patients, "With --cohort: the first N patients (0: only --face)")->check(CLI::Range(0, 10));
+  benchCmd->add_option("--patient", cohort.patientIds, "With --cohort: only these patients (e.g. --patient M4 --patient M9)");
   benchCmd->add_option("--face", cohort.facePath,
                        "With --cohort: also the soft-to-hard ratios of the ArtiSynth face (../shared/cases/artisynth_face)");
   benchCmd->add_option("--image", cohort.imagePath, "With --cohort: the speed-versus-error plot (.png or .jpg)");

@@ -19,7 +19,7 @@ json cut(const char* tmpl, const char* bone, const char* side = nullptr) {
 }
 
 CohortMotion move(const char* fragment, double ap, double si, double lr, double roll = 0, double pitch = 0, double yaw = 0,
-                  const char* center = "") {
+                  std::vector<std::string> center = {}) {
   // ap: advancement (+) / setback (-); si: impaction (+) / downgraft (-); lr: towards the right (+).
   CohortMotion m;
   m.fragment = fragment;
@@ -29,7 +29,7 @@ CohortMotion move(const char* fragment, double ap, double si, double lr, double 
   m.rotationDeg[0] = roll;
   m.rotationDeg[1] = pitch;
   m.rotationDeg[2] = yaw;
-  m.centerLandmark = center;
+  m.centerLandmarks = std::move(center);
   return m;
 }
 
@@ -62,23 +62,26 @@ std::vector<CohortPatient> makeCohort() {
       join(segmented(2, 2, 1.0), {move("mandible", 3, 2, 0)}));
   add("M3", "class III", 2, "Le Fort II", "BSSO", false, {cut("le_fort_2", "skull"), cut("bsso", "mandible")},
       {move("maxilla", 5, 0, 0), move("mandible", -4, 0, 0)});
-  // Asymmetry: midline correction of the maxilla, the mandible turned about its unsplit condyle,
-  // the chin brought to the midline and forward.
+  // Asymmetry (chin 7 mm to the right): midline correction of the maxilla, the mandible turned
+  // about its unsplit left condyle (yaw +3 degrees brings the chin about 4 mm to the left), the chin
+  // piece riding on it and brought 2 mm further left and 3 mm forward.
   add("M4", "asymmetry", 3, "Le Fort I", "USSO", true,
       {cut("le_fort_1", "skull"), cut("usso", "mandible", "right"), cut("genioplasty", "mandible")},
-      {move("maxilla", 0, 0, -2), move("mandible", 0, 0, 0, 0, 0, -3, "condylion_left"), move("chin", 3, 0, -2)});
+      {move("maxilla", 0, 0, -2), move("mandible", 0, 0, 0, 0, 0, 3, {"condylion_left"}),
+       move("chin", 3, 0, -2, 0, 0, 3, {"condylion_left"})});
   add("M5", "class II", 1, "Le Fort I segmented", "BSSO", false, {cut("segmented_maxilla", "skull"), cut("bsso", "mandible")},
       join(segmented(0, 3, 1.0), {move("mandible", 6, 0, 0)}));
   add("M6", "class II", 1, "Le Fort I segmented", "BSSO", false, {cut("segmented_maxilla", "skull"), cut("bsso", "mandible")},
       join(segmented(2, 0, 1.5), {move("mandible", 8, 0, 0)}));
   add("M7", "class III", 2, "Le Fort I segmented", "none", false, {cut("segmented_maxilla", "skull")}, segmented(6, 0, 1.5));
   add("M8", "class III", 2, "Le Fort I segmented", "none", false, {cut("segmented_maxilla", "skull")}, segmented(4, 2, 2.0));
-  // No maxillary surgery: mandibular midline correction (shift and yaw about the chin's centre).
+  // No maxillary surgery: mandibular midline correction, the distal segment turned about the
+  // midpoint of the condyles (yaw +3 degrees: the chin about 4 mm to the left) and shifted 2 mm left.
   add("M9", "asymmetry", 3, "none", "BSSO", false, {cut("bsso", "mandible")},
-      {move("mandible", 0, 0, -3, 0, 0, -3, "pogonion")});
+      {move("mandible", 0, 0, -2, 0, 0, 3, {"condylion_left", "condylion_right"})});
   // Occlusal cant corrected by rolling the maxilla, mandible shifted to the midline.
   add("M10", "asymmetry", 3, "Le Fort I", "BSSO", false, {cut("le_fort_1", "skull"), cut("bsso", "mandible")},
-      {move("maxilla", 2, 0, 0, 3, 0, 0, "upper_incisor_tip"), move("mandible", 2, 0, -3)});
+      {move("maxilla", 2, 0, 0, 3, 0, 0, {"upper_incisor_tip"}), move("mandible", 2, 0, -3)});
   return c;
 }
 
@@ -113,11 +116,14 @@ std::string writeCohortCase(const CohortPatient& patient, const std::string& dir
   for (const CohortMotion& m : patient.plan) {
     json motion = {{"translation_mm", {m.translation[0], m.translation[1], m.translation[2]}},
                    {"rotation_deg", {m.rotationDeg[0], m.rotationDeg[1], m.rotationDeg[2]}}};
-    if (!m.centerLandmark.empty()) {
-      const auto it = phantom.landmarks.find(m.centerLandmark);
-      if (it == phantom.landmarks.end())
-        throw std::runtime_error(patient.id + ": the phantom has no landmark '" + m.centerLandmark + "'");
-      motion["center_mm"] = {it->second.x(), it->second.y(), it->second.z()};
+    if (!m.centerLandmarks.empty()) {
+      Eigen::Vector3d c = Eigen::Vector3d::Zero();
+      for (const std::string& name : m.centerLandmarks) {
+        const auto it = phantom.landmarks.find(name);
+        if (it == phantom.landmarks.end()) throw std::runtime_error(patient.id + ": the phantom has no landmark '" + name + "'");
+        c += it->second / static_cast<double>(m.centerLandmarks.size());
+      }
+      motion["center_mm"] = {c.x(), c.y(), c.z()};
     }
     plan[m.fragment] = motion;
   }

@@ -4,7 +4,9 @@
 // class II / III / asymmetry / open bite morphologies, one case without maxillary surgery), each a
 // phantom variant with its osteotomies and a plan of clinically usual magnitudes
 // (../shared/notes/clinical-primer.md: 2-10 mm, up to 5-10 degrees). Frame of the phantom: mm,
-// +x posterior, +y right, +z superior (advancement is -x, impaction +z).
+// +x posterior, +y right, +z superior (advancement is -x, impaction +z). Each fragment's motion is
+// its own world motion: a genioplasty piece that rides on a moved mandible has the mandible's
+// rotation and centre plus its own translation.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -15,7 +17,8 @@ struct CohortMotion {
   std::string fragment;
   double translation[3] = {0, 0, 0};  // mm, case frame
   double rotationDeg[3] = {0, 0, 0};  // axis-angle, degrees (about +x: roll, +y: pitch, +z: yaw)
-  std::string centerLandmark;         // rotation centre; empty: the origin (pure translations)
+  // Rotation centre: the mean of these landmarks (e.g. both condylia); empty: the origin.
+  std::vector<std::string> centerLandmarks;
 };
 
 struct CohortPatient {

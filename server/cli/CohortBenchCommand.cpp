@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -254,29 +255,60 @@ std::vector<MovementRatio> realFaceRatios(const fs::path& face, const fs::path& 
   return {out[2], out[3], out[0], out[1]};
 }
 
+// The machine is shared: the report says how busy it was (1-minute load average).
+std::string loadAverage() {
+  std::ifstream in("/proc/loadavg");
+  std::string oneMinute;
+  return in >> oneMinute ? oneMinute : std::string("unknown");
+}
+
+std::string utcNow() {
+  const std::time_t t = std::time(nullptr);
+  char s[32];
+  std::strftime(s, sizeof s, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
+  return s;
+}
+
+// The first --patients of the cohort, or those named by --patient (in the cohort's order).
+std::vector<CohortPatient> selectPatients(const CohortBenchOptions& opt) {
+  const std::vector<CohortPatient>& all = cohortPatients();
+  if (opt.patientIds.empty())
+    return {all.begin(), all.begin() + std::min<size_t>(std::max(opt.patients, 0), all.size())};
+  std::string known;
+  for (const CohortPatient& p : all) known += (known.empty() ? "" : ", ") + p.id;
+  for (const std::string& id : opt.patientIds)
+    if (std::none_of(all.begin(), all.end(), [&](const CohortPatient& p) { return p.id == id; }))
+      throw std::invalid_argument("--patient: no patient '" + id + "' in the cohort (" + known + ")");
+  std::vector<CohortPatient> out;
+  for (const CohortPatient& p : all)
+    if (std::find(opt.patientIds.begin(), opt.patientIds.end(), p.id) != opt.patientIds.end()) out.push_back(p);
+  return out;
+}
+
 }  // namespace
 
 int runCohortBench(const CohortBenchOptions& opt) {
   try {
-    const std::vector<CohortPatient>& cohort = cohortPatients();
-    const int n = std::min<int>(opt.patients, static_cast<int>(cohort.size()));
+    const std::vector<CohortPatient> cohort = selectPatients(opt);
+    const int n = static_cast<int>(cohort.size());
     if (n < 1 && opt.facePath.empty()) throw std::invalid_argument("no patient and no --face: nothing to measure");
     if (opt.coarseTriangles < 200 || opt.fineTriangles <= opt.coarseTriangles || opt.referenceTriangles <= opt.fineTriangles)
       throw std::invalid_argument("need 200 <= coarse < fine < reference skin triangles (got " +
                                   std::to_string(opt.coarseTriangles) + ", " + std::to_string(opt.fineTriangles) + ", " +
                                   std::to_string(opt.referenceTriangles) + ")");
+    const std::string startedAt = utcNow(), loadAtStart = loadAverage();
     const bool tempData = opt.dataDir.empty();
     const fs::path data = tempData ? fs::temp_directory_path() / ("orthosim_cohort_" + std::to_string(::getpid())) : fs::path(opt.dataDir);
     fs::create_directories(data);
     const std::string cacheDir = (data / "cache").string();
 
-    std::printf("orthosim bench --cohort: %d of %zu phantom patients (engine/eval/Cohort), %u hardware threads, "
+    std::printf("orthosim bench --cohort: %d of %zu phantom patients (engine/eval/Cohort), %u hardware threads (load average %s), "
                 "solve times medians of %d\n"
                 "reference: each patient's plan on a mesh of %d skin triangles, solved to %g of the default tolerances\n"
                 "  (force %g E h^2, step %g h): a discretisation reference, not clinical truth\n"
                 "coarse: %d, fine: %d skin triangles (lips x3, nose x3, chin x2 the density), default tolerances;\n"
                 "within: share of the face region's skin area within 1 / 3 mm of the reference%s\n\n",
-                n, cohort.size(), std::thread::hardware_concurrency(), opt.repeats, opt.referenceTriangles,
+                n, cohortPatients().size(), std::thread::hardware_concurrency(), loadAtStart.c_str(), opt.repeats, opt.referenceTriangles,
                 opt.referenceToleranceScale, 1e-4 * opt.referenceToleranceScale, 1e-4 * opt.referenceToleranceScale,
                 opt.coarseTriangles, opt.fineTriangles,
                 opt.noContact ? "\nWITHOUT lips-teeth contact (--no-contact: a quick check, not the product's model)" : "");
@@ -435,6 +467,8 @@ int runCohortBench(const CohortBenchOptions& opt) {
                 {"repeats", opt.repeats},
                 {"contact", !opt.noContact},
                 {"hardware_threads", std::thread::hardware_concurrency()},
+                {"measured_at", startedAt},
+                {"load_average", loadAtStart + " at the start, " + loadAverage() + " at the end"},
                 {"patients", patients},
                 {"sweep", sweep},
                 {"ratios_outside_band", outside},

@@ -71,9 +71,32 @@ TEST(Cohort, CasesLoadAndEveryPlannedFragmentIsMadeByTheCuts) {
       const FragmentMotion& f = spec.plan.at(m.fragment);
       EXPECT_NEAR(f.translation.x(), m.translation[0], 1e-12);
       EXPECT_NEAR(f.rotation.norm() * 180 / M_PI, std::hypot(m.rotationDeg[0], m.rotationDeg[1], m.rotationDeg[2]), 1e-9);
-      if (!m.centerLandmark.empty()) EXPECT_LT((f.center - spec.landmarks.at(m.centerLandmark)).norm(), 1e-9) << p.id;
+      if (m.centerLandmarks.empty()) continue;
+      Eigen::Vector3d c = Eigen::Vector3d::Zero();
+      for (const std::string& name : m.centerLandmarks) c += spec.landmarks.at(name) / double(m.centerLandmarks.size());
+      EXPECT_LT((f.center - c).norm(), 1e-9) << p.id;
     }
   }
+  fs::remove_all(dir);
+}
+
+// The asymmetric phantom's chin sits 7 mm to the right (+y): every asymmetry correction must bring
+// pogonion towards the midline, by the fragment that carries it (the chin piece when there is one).
+TEST(Cohort, AsymmetryCorrectionsBringTheChinTowardsTheMidline) {
+  const fs::path dir = fs::temp_directory_path() / ("orthosim_cohort_midline_" + std::to_string(::getpid()));
+  int checked = 0;
+  for (const CohortPatient& p : cohortPatients()) {
+    if (p.diagnosis != "asymmetry") continue;
+    const CaseSpec spec = loadCaseFile(writeCohortCase(p, (dir / p.id).string()));
+    const Eigen::Vector3d pog = spec.landmarks.at("pogonion");
+    ASSERT_GT(pog.y(), 3.0) << p.id << ": the asymmetric phantom's chin should be to the right";
+    const FragmentMotion& carrier = spec.plan.count("chin") ? spec.plan.at("chin") : spec.plan.at("mandible");
+    const double moved = (carrier.pose().apply(pog) - pog).y();
+    EXPECT_LT(moved, -2.0) << p.id << ": pogonion moves " << moved << " mm along +y (right)";
+    EXPECT_GT(pog.y() + moved, -3.0) << p.id << ": pogonion overshoots the midline";
+    ++checked;
+  }
+  EXPECT_GE(checked, 3);
   fs::remove_all(dir);
 }
 
