@@ -46,11 +46,15 @@ function ratioTable(report) {
   const named = measured.map((p) => [p.id, p.ratios_fine]);
   if (report.real_face_ratios) named.push(["ArtiSynth face", report.real_face_ratios]);
   if (!named.length) return document.createTextNode("No ratios measured.");
-  const bands = named[0][1];
-  const head = ["", ...bands.map((b) => `${b.ratio} (${b.band[0]}–${b.band[1]})`)];
-  const rows = named.map(([id, ratios]) => [id, ...ratios.map((r) =>
-    (r.value === null ? ["n/a", ""] : [`${r.value.toFixed(2)}${r.flag === "ok" ? "" : " " + r.flag}`, r.flag === "ok" ? "" : "flag"]))]);
-  return reportTable(head, rows);
+  const head = ["", ...named[0][1].map((r) => r.ratio)];
+  const cell = (r) => {
+    if (r.value === null) return ["n/a", ""];
+    const dir = r.direction === "setback" ? "set back" : "forward";
+    const band = r.band ? `${r.band[0]}–${r.band[1]}` : "no band";
+    const flagged = r.flag === "LOW" || r.flag === "HIGH";
+    return [`${r.value.toFixed(2)} ${dir} (${band})${flagged ? " " + r.flag : ""}`, flagged ? "flag" : ""];
+  };
+  return reportTable(head, named.map(([id, ratios]) => [id, ...ratios.map(cell)]));
 }
 
 async function loadReport() {
@@ -86,7 +90,8 @@ async function loadReport() {
   const ratiosIntro = document.createElement("p");
   ratiosIntro.className = "hint";
   ratiosIntro.textContent = "Soft-to-hard movement ratios of the fine prediction beside the published bands " +
-    "(plausibility checks, not clinical validation); flagged values fall outside.";
+    "(forward movement over the bone's, as the studies measure them; plausibility checks, not clinical " +
+    "validation); flagged values fall outside.";
   box.append(intro, tableFour(report), plot, ratiosIntro, ratioTable(report));
 }
 

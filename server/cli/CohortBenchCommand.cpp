@@ -163,7 +163,7 @@ std::vector<MovementRatio> ratios(const RunResult& r) {
       m.ratio = std::numeric_limits<double>::quiet_NaN();
       m.note = "landmark missing";
     } else {
-      m = movementRatio(band, soft[k].error, h);
+      m = movementRatio(band, soft[k].error, h, r.spec.frame.anterior);
       if (motion == r.spec.plan.end()) m.note = "no " + (frag.empty() ? band.hard : frag) + " in the plan";
     }
     out.push_back(m);
@@ -177,11 +177,12 @@ json ratioJson(const std::vector<MovementRatio>& rs) {
     j.push_back({{"ratio", m.band.name},
                  {"soft", m.band.soft},
                  {"hard", m.band.hard},
-                 {"hard_mm", m.hardMm},
-                 {"soft_along_mm", std::isfinite(m.softAlongMm) ? json(m.softAlongMm) : json(nullptr)},
+                 {"direction", m.advancement ? "advancement" : "setback"},
+                 {"hard_forward_mm", m.hardMm},
+                 {"soft_forward_mm", std::isfinite(m.softMm) ? json(m.softMm) : json(nullptr)},
                  {"value", std::isfinite(m.ratio) ? json(m.ratio) : json(nullptr)},
-                 {"band", {m.band.lo, m.band.hi}},
-                 {"source", m.band.source},
+                 {"band", m.range().published() ? json({m.range().lo, m.range().hi}) : json(nullptr)},
+                 {"source", m.range().source},
                  {"flag", ratioFlagName(m.flag)},
                  {"note", m.note}});
   return j;
@@ -246,7 +247,7 @@ std::vector<MovementRatio> realFaceRatios(const fs::path& face, const fs::path& 
         mr.ratio = std::numeric_limits<double>::quiet_NaN();
         mr.note = "no midline skin vertex in the landmark's height band";
       } else {
-        mr = movementRatio(ratioBands()[k], moved.vertices.col(v) - rest.vertices.col(v), h);
+        mr = movementRatio(ratioBands()[k], moved.vertices.col(v) - rest.vertices.col(v), h, Eigen::Vector3d(-1, 0, 0));
       }
       out.push_back(mr);
     }
@@ -400,14 +401,20 @@ int runCohortBench(const CohortBenchOptions& opt) {
     }
 
     // Plausibility: soft-to-hard ratios of the fine prediction beside the published bands.
-    std::printf("\nsoft-to-hard movement ratios (fine prediction; soft movement along the bone's, at the landmarks):\n");
+    std::printf("\nsoft-to-hard movement ratios (fine prediction; forward movement of the soft landmark over the bone's; "
+                "adv/set: the bone moves forward/back):\n");
     std::printf("%-4s", "id");
     for (const RatioBand& b : ratioBands()) std::printf(" %26s", b.name.c_str());
-    std::printf("\n%-4s", "band");
-    for (const RatioBand& b : ratioBands()) {
-      char s[40];
-      std::snprintf(s, sizeof s, "%.2f-%.2f", b.lo, b.hi);
-      std::printf(" %26s", s);
+    for (const bool forward : {true, false}) {
+      std::printf("\n%-4s", forward ? "adv" : "set");
+      for (const RatioBand& b : ratioBands()) {
+        char s[40];
+        if (b.range(forward).published())
+          std::snprintf(s, sizeof s, "%.2f-%.2f", b.range(forward).lo, b.range(forward).hi);
+        else
+          std::snprintf(s, sizeof s, "none published");
+        std::printf(" %26s", s);
+      }
     }
     std::printf("\n");
     json faceJson = nullptr;
@@ -423,25 +430,30 @@ int runCohortBench(const CohortBenchOptions& opt) {
       std::printf("%-4s", rowNames[i].c_str());
       for (const MovementRatio& m : allRatios[i]) {
         char s[40];
-        if (m.flag == RatioFlag::NotApplicable)
+        if (!std::isfinite(m.ratio))
           std::snprintf(s, sizeof s, "n/a");
         else
-          std::snprintf(s, sizeof s, "%.2f %-4s", m.ratio, m.flag == RatioFlag::Within ? "" : ratioFlagName(m.flag));
+          std::snprintf(s, sizeof s, "%.2f %s %-4s", m.ratio, m.advancement ? "adv" : "set",
+                        m.flag == RatioFlag::Within ? "" : ratioFlagName(m.flag));
         std::printf(" %26s", s);
         if (m.flag != RatioFlag::NotApplicable) ++measuredRatios;
         if (m.flag == RatioFlag::Below || m.flag == RatioFlag::Above) ++outside;
       }
       std::printf("\n");
     }
-    std::printf("%d of %d ratios outside their band (n/a: the bone does not move 1 mm there)%s\nbands:\n", outside,
+    std::printf("%d of %d ratios outside their band (n/a: the bone moves less than 1 mm forward or back there; a ratio "
+                "without a flag: no band published for its direction)%s\nbands:\n", outside,
                 measuredRatios,
                 faceJson.is_null() ? ""
                                    : "\nface: the ArtiSynth face, coarse, with contact: 5 mm Le Fort I advancement (upper lip, "
                                      "nose), 5 mm mandibular setback (chin, lower lip); landmarks = most anterior midline "
                                      "skin vertex in a height band");
     for (const RatioBand& b : ratioBands())
-      std::printf("  %-26s %s over %s: %.2f-%.2f, %s\n", b.name.c_str(), b.soft.c_str(), b.hard.c_str(), b.lo, b.hi,
-                  b.source.c_str());
+      for (const bool forward : {true, false})
+        if (b.range(forward).published())
+          std::printf("  %-26s %s over %s, %s: %.2f-%.2f, %s\n", b.name.c_str(), b.soft.c_str(), b.hard.c_str(),
+                      forward ? "advancement" : "setback", b.range(forward).lo, b.range(forward).hi,
+                      b.range(forward).source.c_str());
 
     // Summary over the cohort.
     std::vector<double> c1, c3, f1, f3, ct, ft;

@@ -86,7 +86,8 @@ TEST_F(CohortBench, TwoPatientsTablePlotAndRatios) {
     EXPECT_GE(p["fine"]["face_region"]["share_within"][0].get<double>() + 0.005,
               p["coarse"]["face_region"]["share_within"][0].get<double>());
     EXPECT_LE(p["fine"]["face_region"]["mean_abs_mm"].get<double>(), p["coarse"]["face_region"]["mean_abs_mm"].get<double>() + 0.01);
-    // Ratios: four, each either a finite value with a flag that matches its band, or n/a with a note.
+    // Ratios: four, each either a finite value with a flag that matches its direction's band, or
+    // n/a with a note.
     ASSERT_EQ(p["ratios_fine"].size(), 4u);
     int applicable = 0;
     for (const auto& r : p["ratios_fine"]) {
@@ -100,8 +101,14 @@ TEST_F(CohortBench, TwoPatientsTablePlotAndRatios) {
       const double v = r["value"], lo = r["band"][0], hi = r["band"][1];
       EXPECT_EQ(flag, v < lo ? "LOW" : v > hi ? "HIGH" : "ok") << r.dump();
     }
-    // Both patients move the maxilla and mandible 2 mm or more at the landmarks.
-    EXPECT_EQ(applicable, 4);
+    // Both patients move the maxilla and mandible 2 mm or more forward or back at the landmarks,
+    // and each direction has a published band for the lower face.
+    EXPECT_GE(applicable, 2);
+    for (const auto& r : p["ratios_fine"]) {
+      if (r["hard"] == "pogonion" || r["hard"] == "lower_incisor_tip") EXPECT_NE(r["flag"], "n/a") << r.dump();
+      const double hard = r["hard_forward_mm"];
+      EXPECT_EQ(r["direction"], hard >= 0 ? "advancement" : "setback") << r.dump();
+    }
   }
   const RgbImage plot = render::readPng(png);
   EXPECT_EQ(plot.width, 900);
@@ -122,7 +129,7 @@ TEST_F(CohortBench, RealFaceRatiosAreComputedAndFlagged) {
   ASSERT_EQ(j["real_face_ratios"].size(), 4u);
   for (const auto& r : j["real_face_ratios"]) {
     ASSERT_TRUE(finite(r["value"])) << r.dump();
-    EXPECT_NEAR(r["hard_mm"].get<double>(), 5.0, 1e-9);
+    EXPECT_NEAR(std::abs(r["hard_forward_mm"].get<double>()), 5.0, 1e-9);
     const double v = r["value"], lo = r["band"][0], hi = r["band"][1];
     EXPECT_EQ(r["flag"].get<std::string>(), v < lo ? "LOW" : v > hi ? "HIGH" : "ok") << r.dump();
   }
