@@ -56,6 +56,26 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--width", renderBench.width, "With --render: image width")->check(CLI::Range(16, 8192));
   benchCmd->add_option("--height", renderBench.height, "With --render: image height")->check(CLI::Range(16, 8192));
 
+  bool benchCohort = false;
+  orthosim::cli::CohortBenchOptions cohort;
+  benchCmd->add_flag("--cohort", benchCohort,
+                     "The synthetic cohort (ten phantom patients): coarse and fine against a finer reference, "
+                     "Table 4, speed-versus-error plot, soft-to-hard movement ratios");
+  benchCmd->add_option("--patients", cohort.patients, "With --cohort: the first N patients (0: only --face)")->check(CLI::Range(0, 10));
+  benchCmd->add_option("--patient", cohort.patientIds, "With --cohort: only these patients (e.g. --patient M4 --patient M9)");
+  benchCmd->add_option("--face", cohort.facePath,
+                       "With --cohort: also the soft-to-hard ratios of the ArtiSynth face (../shared/cases/artisynth_face)");
+  benchCmd->add_option("--image", cohort.imagePath, "With --cohort: the speed-versus-error plot (.png or .jpg)");
+  benchCmd->add_option("--coarse-triangles", cohort.coarseTriangles, "With --cohort: coarse skin triangles");
+  benchCmd->add_option("--fine-triangles", cohort.fineTriangles, "With --cohort: fine skin triangles");
+  benchCmd->add_option("--reference-triangles", cohort.referenceTriangles, "With --cohort: the reference's skin triangles");
+  benchCmd->add_option("--reference-tolerance", cohort.referenceToleranceScale,
+                       "With --cohort: the reference's tolerances as a multiple of the defaults")->check(CLI::Range(1e-9, 1.0));
+  benchCmd->add_flag("--no-contact", cohort.noContact,
+                     "With --cohort: leave out the lips-teeth contact (a quick check; not the product's model)");
+  benchCmd->add_option("--sweep-patients", cohort.sweepPatients,
+                       "With --cohort: patients also solved over more resolutions and tolerances for the plot")->check(CLI::Range(0, 10));
+
   int phantomVariant = 0;
   std::string phantomOut = "phantom";
   auto* phantom = app.add_subcommand("phantom", "Write the built-in phantom head as a surface-based case");
@@ -143,6 +163,12 @@ int main(int argc, char** argv) {
       return orthosim::cli::runSolve(scene, out, solveOptions);
     }
     if (*demo) return orthosim::cli::runDemo(demoOut);
+    if (*benchCmd && benchCohort) {
+      cohort.repeats = bench.repeats == 5 ? 3 : bench.repeats;
+      cohort.jsonPath = bench.jsonPath;
+      if (benchCmd->count("--data")) cohort.dataDir = latency.dataDir;
+      return orthosim::cli::runCohortBench(cohort);
+    }
     if (*benchCmd && benchLatency) {
       latency.phantomVariant = caseBench.phantomVariant;
       latency.jsonPath = bench.jsonPath;

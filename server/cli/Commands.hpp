@@ -73,6 +73,25 @@ struct RenderBenchOptions {
 // the phantom's predicted face, coarse and fine, without and with 4x multisampling.
 int runRenderBench(const RenderBenchOptions& options);
 
+struct CohortBenchOptions {
+  int patients = 10;               // the first N of the cohort (engine/eval/Cohort)
+  std::vector<std::string> patientIds;  // instead: these patients (M1..M10)
+  int coarseTriangles = 3000;      // skin triangles (the case defaults)
+  int fineTriangles = 20000;
+  int referenceTriangles = 60000;  // the discretisation reference: 3x fine
+  double referenceToleranceScale = 1e-3;  // of the default tolerances (1e-4 E h^2, 1e-4 h)
+  int sweepPatients = 1;           // patients also solved over more resolutions and tolerances (the plot)
+  int repeats = 3;                 // solves per run; medians reported
+  bool noContact = false;          // drop the case's lips-teeth contact (quick checks only)
+  std::string facePath;            // the ArtiSynth face folder: its ratios too; empty: not measured
+  std::string jsonPath, imagePath;
+  std::string dataDir;             // cohort cases and tissue cache (kept); empty: a temporary folder
+};
+// `orthosim bench --cohort`: the paper's Table 4 on the synthetic cohort, the speed-versus-error
+// plot, the soft-to-hard movement ratios. 0 when every patient is measured, 1 on bad input, 2 when
+// a patient could not be (its row says why; the others are still measured and written).
+int runCohortBench(const CohortBenchOptions& options);
+
 // Writes the built-in phantom head (variant N) as a surface-based case under outDir.
 int runPhantom(int variant, const std::string& outDir);
 

@@ -3,49 +3,15 @@
 // maxilla advancement slider, sees a new frame and a solve time, confirms on the fine model to
 // 100 %, and saves a screenshot as a test artefact.
 // Environment: ORTHOSIM_CLI (the executable), ORTHOSIM_TEST_DATA (server data folder),
-// ARTIFACT_DIR (where the screenshot goes).
+// ARTIFACT_DIR (where the screenshot goes); see harness.mjs.
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { spawn } from "node:child_process";
-import { mkdtempSync, rmSync, mkdirSync, statSync } from "node:fs";
-import { tmpdir } from "node:os";
+import { mkdirSync, statSync } from "node:fs";
 import path from "node:path";
-import { chromium } from "playwright-core";
-
-const cli = process.env.ORTHOSIM_CLI;
-const dataDir = process.env.ORTHOSIM_TEST_DATA;
-const artifacts = process.env.ARTIFACT_DIR || ".";
-
-function startServer() {
-  const server = spawn(cli, ["serve", "--port", "0", "--data", dataDir, "--no-warm-up"], { stdio: ["ignore", "pipe", "inherit"] });
-  const port = new Promise((resolve, reject) => {
-    let out = "";
-    server.stdout.on("data", (d) => {
-      out += d;
-      const m = out.match(/listening on http:\/\/127\.0\.0\.1:(\d+)/);
-      if (m) resolve(Number(m[1]));
-    });
-    server.on("exit", (code) => reject(new Error(`orthosim serve exited with ${code}`)));
-    setTimeout(() => reject(new Error("orthosim serve did not start in 30 s")), 30000);
-  });
-  return { server, port };
-}
+import { artifacts, withPage } from "./harness.mjs";
 
 test("planning page: slider preview, fine confirm, screenshot", { timeout: 300000 }, async () => {
-  assert.ok(cli, "ORTHOSIM_CLI must name the orthosim executable");
-  const { server, port } = startServer();
-  const userData = mkdtempSync(path.join(tmpdir(), "orthosim-chromium-"));
-  let context;
-  try {
-    const url = `http://127.0.0.1:${await port}/`;
-    context = await chromium.launchPersistentContext(userData, {
-      executablePath: "/usr/bin/chromium",
-      headless: true,
-      viewport: { width: 1280, height: 900 },
-      args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-        "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-    });
-    const page = context.pages()[0] || (await context.newPage());
+  await withPage(async (page, url) => {
     const pageErrors = [];
     page.on("pageerror", (e) => pageErrors.push(e.message));
     await page.goto(url);
@@ -100,9 +66,5 @@ test("planning page: slider preview, fine confirm, screenshot", { timeout: 30000
     await page.screenshot({ path: shot, fullPage: true });
     assert.ok(statSync(shot).size > 20000, "the screenshot shows the page");
     assert.deepEqual(pageErrors, [], "no script errors on the page");
-  } finally {
-    if (context) await context.close();
-    server.kill("SIGTERM");
-    rmSync(userData, { recursive: true, force: true });
-  }
+  });
 });

@@ -1,0 +1,50 @@
+// What the browser tests share: a real `orthosim serve` on a free port and Debian's Chromium in a
+// fresh profile, headless with the flags the machine needs (../shared/notes/debian-recipes.md).
+import { spawn } from "node:child_process";
+import { mkdtempSync, rmSync } from "node:fs";
+import { tmpdir } from "node:os";
+import path from "node:path";
+import { chromium } from "playwright-core";
+
+export const cli = process.env.ORTHOSIM_CLI;
+export const dataDir = process.env.ORTHOSIM_TEST_DATA;
+export const artifacts = process.env.ARTIFACT_DIR || ".";
+
+export function startServer() {
+  const server = spawn(cli, ["serve", "--port", "0", "--data", dataDir, "--no-warm-up"], { stdio: ["ignore", "pipe", "inherit"] });
+  const port = new Promise((resolve, reject) => {
+    let out = "";
+    server.stdout.on("data", (d) => {
+      out += d;
+      const m = out.match(/listening on http:\/\/127\.0\.0\.1:(\d+)/);
+      if (m) resolve(Number(m[1]));
+    });
+    server.on("exit", (code) => reject(new Error(`orthosim serve exited with ${code}`)));
+    setTimeout(() => reject(new Error("orthosim serve did not start in 30 s")), 30000);
+  });
+  return { server, port };
+}
+
+// Runs body(page, url) against a fresh server and browser; both are closed whatever happens.
+export async function withPage(body) {
+  if (!cli) throw new Error("ORTHOSIM_CLI must name the orthosim executable");
+  const { server, port } = startServer();
+  const userData = mkdtempSync(path.join(tmpdir(), "orthosim-chromium-"));
+  let context;
+  try {
+    const url = `http://127.0.0.1:${await port}/`;
+    context = await chromium.launchPersistentContext(userData, {
+      executablePath: "/usr/bin/chromium",
+      headless: true,
+      viewport: { width: 1280, height: 900 },
+      args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+        "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+    });
+    const page = context.pages()[0] || (await context.newPage());
+    await body(page, url);
+  } finally {
+    if (context) await context.close();
+    server.kill("SIGTERM");
+    rmSync(userData, { recursive: true, force: true });
+  }
+}
