@@ -214,6 +214,17 @@ function onPreview(m) {
     `<p id="solve-time">Solved in <b>${f.solve_s.toFixed(2)} s</b> (${f.iterations} Newton iterations); ` +
     `skin moved up to ${f.max_skin_displacement_mm.toFixed(1)} mm.</p>` +
     `<table><tr><th>landmark</th><th>forward</th><th>up</th><th>right</th></tr>${rows}</table>`;
+  appendSolveWarnings($("preview-figures"), f.warnings);
+}
+
+// What the solver says about the result itself (e.g. bone pieces that overlap), as text.
+function appendSolveWarnings(box, warnings) {
+  for (const w of warnings || []) {
+    const p = document.createElement("p");
+    p.className = "warning solve-warning";
+    p.textContent = w;
+    box.append(p);
+  }
 }
 
 function showWarnings(warnings) {
@@ -239,6 +250,7 @@ function onJobDone(m) {
     `(${m.figures.tetrahedra} tetrahedra).` + (d && d.max_mm !== undefined
       ? ` Coarse vs fine on the skin: mean ${d.mean_mm.toFixed(2)} mm, 95% within ${d.p95_mm.toFixed(2)} mm, max ${d.max_mm.toFixed(2)} mm.`
       : "");
+  appendSolveWarnings($("job-status"), m.figures.warnings);
   $("colormap").value = "difference";
   sendView({ colormap: "difference" });
 }

@@ -32,7 +32,9 @@ nlohmann::json resultToJson(const Model& model, const SolveResult& r) {
                   {"reduced_dofs", model.coupling().numReducedDofs()},
                   {"hessian_nonzeros", model.system().matrix().nonZeros()},
                   {"build_s", model.buildSeconds()}};
-  out["warnings"] = model.coupling().warnings();
+  json warnings = model.coupling().warnings();
+  for (const std::string& w : r.warnings) warnings.push_back(w);
+  out["warnings"] = warnings;
 
   double maxDisp = 0;
   for (int i = 0; i < r.state.x.cols(); ++i)

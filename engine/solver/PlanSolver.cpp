@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "solver/NewtonSolver.hpp"
+#include "solver/PinchedTissue.hpp"
 
 namespace orthosim {
 namespace {
@@ -92,6 +93,7 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
   r.loadFraction = s;
   r.converged = s >= 1.0;
   summarize(model, r);
+  for (const PinchedTissue& p : findPinchedTissue(model, r.state.x)) r.warnings.push_back(describePinchedTissue(p));
   r.timings.contactQueries = (model.contact() ? model.contact()->queries() : 0) - queries0;
   r.timings.contact = model.contactSeconds() - contact0;
   r.timings.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

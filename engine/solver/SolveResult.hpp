@@ -39,7 +39,8 @@ struct SolveResult {
   int iterations = 0;         // Newton iterations of the converged substeps
   int chordIterations = 0;    // of which reused a factorisation
   int refinements = 0;        // substeps halved after a failure
-  double energy = 0, residual = 0, minDetF = 0;
+  double energy = 0, residual = 0, minDetF = 0;  // minDetF: over the elements the solve can change
+  std::vector<std::string> warnings;  // about the returned state (tissue the plan itself crushes)
   SolveTimings timings;
 };
 

@@ -50,6 +50,7 @@ struct RunResult {
   double buildSeconds = 0, solveSeconds = 0;
   std::vector<double> solveTimes;
   int iterations = 0, chordIterations = 0;
+  std::vector<std::string> warnings;  // the solve's, about its result (crushed tissue)
   SurfaceMesh rest, skin;  // full-resolution skin at rest and deformed
   CaseSpec spec;
   // Against the reference (not for the reference itself):
@@ -85,6 +86,7 @@ RunResult runConfig(const CaseSpec& base, const RunConfig& cfg, int repeats, con
   r.solveSeconds = median(r.solveTimes);
   r.iterations = result.iterations;
   r.chordIterations = result.chordIterations;
+  r.warnings = result.warnings;
   r.skinTriangles = m.tissue.skinTriangles;
   r.tets = m.scene.mesh.numTets();
   r.nodes = m.scene.mesh.numNodes();
@@ -117,7 +119,8 @@ json runJson(const RunResult& r) {
             {"solve_s", r.solveSeconds},
             {"solve_times_s", r.solveTimes},
             {"newton_iterations", r.iterations},
-            {"chord_iterations", r.chordIterations}};
+            {"chord_iterations", r.chordIterations},
+            {"warnings", r.warnings}};
   if (r.measured) {
     j["face_region"] = {{"area_mm2", r.region.area},
                         {"mean_abs_mm", r.region.meanAbs},
@@ -354,6 +357,8 @@ int runCohortBench(const CohortBenchOptions& opt) {
                   p.diagnosis.c_str(), p.procedure().c_str(), coarse.skinTriangles, coarse.tets, coarse.solveSeconds,
                   100 * share(coarse, 0), 100 * share(coarse, 2), fine.skinTriangles, fine.tets, fine.solveSeconds,
                   100 * share(fine, 0), 100 * share(fine, 2), ref.skinTriangles, ref.solveSeconds);
+      for (const RunResult* run : {&coarse, &fine, &ref})
+        for (const std::string& w : run->warnings) std::printf("  %s %s: warning: %s\n", p.id.c_str(), run->config.label.c_str(), w.c_str());
       std::fflush(stdout);
       plot.points.push_back({coarse.solveSeconds, 100 * share(coarse, 0), 0, p.id});
       plot.points.push_back({fine.solveSeconds, 100 * share(fine, 0), 1, p.id});

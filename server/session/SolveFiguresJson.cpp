@@ -33,7 +33,8 @@ json solveFiguresJson(const CaseModel& model, const SkinFigureProbe& probe, cons
               {"landmarks", std::move(landmarks)},
               {"resolution", resolutionName(model.resolution)},
               {"nodes", model.scene.mesh.numNodes()},
-              {"tetrahedra", model.scene.mesh.numTets()}};
+              {"tetrahedra", model.scene.mesh.numTets()},
+              {"warnings", r.warnings}};
   if (!r.converged) out["error"] = r.error;
   return out;
 }

@@ -64,6 +64,9 @@ TEST(PlanningWorkflow, CoarsePreviewThenFineConfirmThenExport) {
   const double lip = figures["landmarks"]["labrale_superius"]["anterior_mm"];
   EXPECT_GT(lip, 2.0);
   EXPECT_LT(lip, 5.0);
+  // A Le Fort I advancement moves no bone into another: the solver has nothing to warn about.
+  ASSERT_TRUE(figures["warnings"].is_array()) << preview.dump();
+  EXPECT_TRUE(figures["warnings"].empty()) << preview.dump();
   EXPECT_NEAR(figures["landmarks"]["soft_pogonion"]["total_mm"].get<double>(), 0.0, 0.5);
   EXPECT_GT(figures["time_s"].get<double>(), 0.0);
   EXPECT_GE(figures["iterations"].get<int>(), 1);

@@ -1,0 +1,61 @@
+#include "solver/PinchedTissue.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+#include "solver/Model.hpp"
+
+namespace orthosim {
+namespace {
+
+// The fragments a constrained node follows (several when blended near a cut), or "fixed".
+void addFollowed(const Model& model, int node, std::vector<std::string>& names) {
+  const Coupling& c = model.coupling();
+  if (!c.isSkinned(node)) names.push_back("fixed");
+  for (const Coupling::SkinTerm* t = c.skinBegin(node); t != c.skinEnd(node); ++t)
+    if (t->weight > 1e-6) names.push_back(model.scene().fragments[t->fragment].name);
+}
+
+}  // namespace
+
+std::vector<PinchedTissue> findPinchedTissue(const Model& model, const Eigen::Matrix3Xd& x, double maxDetF) {
+  const TetMesh& mesh = model.scene().mesh;
+  std::vector<bool> active(mesh.numTets(), false);
+  for (int e : model.energy().activeElements()) active[e] = true;
+  std::map<std::vector<std::string>, PinchedTissue> groups;
+  for (int e = 0; e < mesh.numTets(); ++e) {
+    if (active[e]) continue;
+    const double det = model.energy().deformationGradient(e, x).determinant();
+    if (!(det < maxDetF)) continue;
+    std::vector<std::string> names;
+    for (int a = 0; a < 4; ++a) addFollowed(model, mesh.tets(a, e), names);
+    std::sort(names.begin(), names.end());
+    names.erase(std::unique(names.begin(), names.end()), names.end());
+    PinchedTissue& p = groups[names];
+    p.fragments = names;
+    p.threshold = maxDetF;
+    ++p.elements;
+    if (det <= 0) ++p.inverted;
+    p.minDetF = std::min(p.minDetF, det);
+  }
+  std::vector<PinchedTissue> out;
+  for (auto& [names, p] : groups) out.push_back(std::move(p));
+  std::sort(out.begin(), out.end(), [](const PinchedTissue& a, const PinchedTissue& b) { return a.minDetF < b.minDetF; });
+  return out;
+}
+
+std::string describePinchedTissue(const PinchedTissue& p) {
+  std::string names;
+  for (size_t i = 0; i < p.fragments.size(); ++i)
+    names += (i == 0 ? "" : i + 1 == p.fragments.size() ? " and " : ", ") + p.fragments[i];
+  char figures[160];
+  std::snprintf(figures, sizeof figures, "%d tetrahedra below %.3g of their volume, %d inverted, min det F %.3g", p.elements,
+                p.threshold, p.inverted, p.minDetF);
+  return "tissue moved only by " + names + " is crushed by the plan (" + figures +
+         "): the pieces move into each other there, or turn too differently for the blend across their cut; "
+         "check the bone positions";
+}
+
+}  // namespace orthosim
