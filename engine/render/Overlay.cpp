@@ -1,25 +1,12 @@
 #include "render/Overlay.hpp"
 
 #include "render/GlCheck.hpp"
+#include "render/GlyphRects.hpp"
 #include "render/ShaderSources.hpp"
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#include <stb/stb_easy_font.h>
-#pragma GCC diagnostic pop
 
 namespace orthosim::render {
 namespace {
-
-// The font covers printable ASCII only; anything else would index outside its tables.
-std::vector<char> printable(const std::string& s) {
-  std::vector<char> out;
-  for (char c : s) out.push_back(c >= 32 && c < 127 ? c : '?');
-  out.push_back('\0');
-  return out;
-}
 
 }  // namespace
 
@@ -45,20 +32,11 @@ void Overlay::gradient(double x0, double y0, double x1, double y1, const Eigen::
 }
 
 void Overlay::text(double x, double y, const std::string& s, double scale, const Eigen::Vector4f& color) {
-  // stb_easy_font writes quads of 4 vertices (x, y, z, rgba bytes) at font scale 1 from (0, 0).
-  std::vector<char> str = printable(s);
-  std::vector<char> quads(300 * (s.size() + 1));
-  const int n = stb_easy_font_print(0, 0, str.data(), nullptr, quads.data(), static_cast<int>(quads.size()));
-  for (int q = 0; q < n; ++q) {
-    const float* v0 = reinterpret_cast<const float*>(quads.data() + 64 * q);       // first corner
-    const float* v2 = reinterpret_cast<const float*>(quads.data() + 64 * q + 32);  // opposite corner
-    rect(x + scale * v0[0], y + scale * v0[1], x + scale * v2[0], y + scale * v2[1], color);
-  }
+  for (const auto& r : glyphRects(s)) rect(x + scale * r[0], y + scale * r[1], x + scale * r[2], y + scale * r[3], color);
 }
 
 double Overlay::textWidth(const std::string& s, double scale) {
-  std::vector<char> str = printable(s);
-  return scale * stb_easy_font_width(str.data());
+  return scale * glyphWidth(s);
 }
 
 void Overlay::draw(int width, int height) {

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include <stb/stb_easy_font.h>
+#include "render/GlyphRects.hpp"
 
 namespace orthosim::render {
 namespace {
@@ -22,23 +22,12 @@ struct Canvas {
       for (int x = std::min(x0, x1); x <= std::max(x0, x1); ++x) pixel(x, y, c);
   }
   void text(int x, int y, const std::string& s, int scale, const std::array<unsigned char, 3>& c) {
-    std::vector<char> str(s.begin(), s.end());
-    for (char& ch : str)
-      if (ch < 32 || ch > 126) ch = '?';
-    str.push_back(0);
-    std::vector<char> quads(300 * (s.size() + 1));
-    const int n = stb_easy_font_print(0, 0, str.data(), nullptr, quads.data(), static_cast<int>(quads.size()));
-    for (int q = 0; q < n; ++q) {
-      const float* v0 = reinterpret_cast<const float*>(quads.data() + 64 * q);
-      const float* v2 = reinterpret_cast<const float*>(quads.data() + 64 * q + 32);
-      rect(x + scale * static_cast<int>(v0[0]), y + scale * static_cast<int>(v0[1]), x + scale * static_cast<int>(v2[0]) - 1,
-           y + scale * static_cast<int>(v2[1]) - 1, c);
-    }
+    for (const auto& r : glyphRects(s))
+      rect(x + scale * static_cast<int>(r[0]), y + scale * static_cast<int>(r[1]), x + scale * static_cast<int>(r[2]) - 1,
+           y + scale * static_cast<int>(r[3]) - 1, c);
   }
   static int textWidth(const std::string& s, int scale) {
-    std::vector<char> str(s.begin(), s.end());
-    str.push_back(0);
-    return scale * stb_easy_font_width(str.data());
+    return scale * glyphWidth(s);
   }
   void textVertical(int x, int y, const std::string& s, int scale, const std::array<unsigned char, 3>& c) {
     // Bottom to top: render into a scratch image, then rotate by 90 degrees.
