@@ -18,6 +18,7 @@
 #include "phantom/PhantomCase.hpp"
 #include "scene/BlockScene.hpp"
 #include "scene/CaseModel.hpp"
+#include "solver/PinchedTissue.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace fs = std::filesystem;
@@ -41,6 +42,7 @@ void report(const std::string& name, const SolveResult& r) {
             << r.substeps.size() << " substeps, " << r.timings.factorizations << " factorisations, min det F "
             << r.minDetF << ")";
   if (!r.converged) std::cout << ": " << r.error;
+  for (const std::string& w : r.warnings) std::cout << "\n  warning: " << w;
   std::cout << std::endl;
 }
 
@@ -55,6 +57,14 @@ void expectValid(const Model& model, const SimState& start, const PlanTargets& t
     ASSERT_TRUE(p.b.allFinite());
   }
   EXPECT_GT(model.energy().minDetF(r.state.x), 0.0);
+  // No element is inverted silently: those the solve cannot move (all nodes on bones) and the plan
+  // crushes are every one there is, and the result's warnings name them.
+  int inverted = 0, reported = 0;
+  for (int e = 0; e < model.scene().mesh.numTets(); ++e)
+    if (model.energy().deformationGradient(e, r.state.x).determinant() <= 0) ++inverted;
+  for (const PinchedTissue& p : findPinchedTissue(model, r.state.x)) reported += p.inverted;
+  EXPECT_EQ(inverted, reported);
+  if (inverted > 0) EXPECT_FALSE(r.warnings.empty());
   EXPECT_TRUE(std::isfinite(model.totalEnergy(r.state)));
   EXPECT_TRUE(std::isfinite(r.minDetF));
   if (r.converged) {
