@@ -92,7 +92,20 @@ async function loadReport() {
   ratiosIntro.textContent = "Soft-to-hard movement ratios of the fine prediction beside the published bands " +
     "(forward movement over the bone's, as the studies measure them; plausibility checks, not clinical " +
     "validation); flagged values fall outside.";
-  box.append(intro, tableFour(report), plot, ratiosIntro, ratioTable(report));
+  box.append(intro, tableFour(report), runNotes(report), plot, ratiosIntro, ratioTable(report));
+}
+
+// What the table's numbers rest on: references solved differently, and the solver's warnings.
+function runNotes(report) {
+  const list = document.createElement("ul");
+  list.className = "hint";
+  for (const p of report.patients) {
+    if (p.reference_note) list.append(Object.assign(document.createElement("li"), { textContent: `${p.id}: ${p.reference_note}` }));
+    for (const run of ["coarse", "fine", "reference"])
+      for (const w of (p[run] && p[run].warnings) || [])
+        list.append(Object.assign(document.createElement("li"), { textContent: `${p.id} ${run}: ${w}` }));
+  }
+  return list;
 }
 
 document.getElementById("report").addEventListener("toggle", (e) => { if (e.target.open) loadReport(); });

@@ -79,7 +79,7 @@ struct CohortBenchOptions {
   int coarseTriangles = 3000;      // skin triangles (the case defaults)
   int fineTriangles = 20000;
   int referenceTriangles = 60000;  // the discretisation reference: 3x fine
-  double referenceToleranceScale = 1e-3;  // of the default tolerances (1e-4 E h^2, 1e-4 h)
+  double referenceToleranceScale = 1e-2;  // of the default tolerances (1e-4 E h^2, 1e-4 h)
   int sweepPatients = 1;           // patients also solved over more resolutions and tolerances (the plot)
   int repeats = 3;                 // solves per run; medians reported
   bool noContact = false;          // drop the case's lips-teeth contact (quick checks only)
