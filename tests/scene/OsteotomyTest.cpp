@@ -2,6 +2,9 @@
 // +y right, +z superior) and the split of bonded tissue into fragments with the 10 mm blend rule.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "scene/BoneFragments.hpp"
 #include "scene/Osteotomy.hpp"
 
@@ -145,6 +148,77 @@ TEST(BoneFragments, NodesNearACutBlendLinearlyFromHalfAtTheCutToOneAtTenMillimet
     EXPECT_NEAR(wMaxilla[i], expected, 1e-12) << "z = " << z;
   }
   EXPECT_EQ(c.blended.size(), 19u);  // |z| < 10
+}
+
+// Two segments side by side below a shared cut (the posterior segments of a segmented maxilla
+// under the Le Fort I line, split at the midline): tissue bonded to the bone above them blends
+// into both, so no weight jumps where the three fragments meet.
+TEST(BoneFragments, WhereThreeFragmentsMeetTheWeightsSumToOneAndChangeContinuously) {
+  const double h = 0.5, width = 10.0;
+  const int n = 81;  // x and z from -20 to 20 mm
+  Eigen::Matrix3Xd rest(3, n * n);
+  BoneGroup skull{"skull", {}};
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < n; ++k) {
+      rest.col(i * n + k) << -20.0 + h * i, 0, -20.0 + h * k;
+      skull.nodes.push_back(i * n + k);
+    }
+  const CutPlane below{Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ()};
+  const FragmentRegion left{"left", "skull", {below, CutPlane{Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitX()}}};
+  const FragmentRegion right{"right", "skull", {below, CutPlane{Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()}}};
+  const FragmentCoupling c = splitBoneGroups(rest, {skull}, {left, right}, width);
+  ASSERT_EQ(c.fragments.size(), 3u);
+  // weight[f](i, k) of fragment f (0 skull, 1 left, 2 right) at x = -20 + h i, z = -20 + h k.
+  std::vector<Eigen::MatrixXd> weight(3, Eigen::MatrixXd::Zero(n, n));
+  for (int f = 0; f < 3; ++f)
+    for (int node : c.nodes[f]) weight[f](node / n, node % n) = 1.0;
+  for (const BlendedNode& b : c.blended) {
+    double sum = 0;
+    for (const auto& [f, w] : b.weights) {
+      EXPECT_GT(w, 0.0);
+      sum += w;
+      weight[f](b.node / n, b.node % n) = w;
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-12) << "node " << b.node;
+    // Own fragment first: the one the node lies in.
+    const Eigen::Vector3d x = rest.col(b.node);
+    const int own = x.z() > 0 ? 0 : x.x() >= 0 ? 2 : 1;  // on a plane: inside (the last region)
+    EXPECT_EQ(b.weights[0].first, own) << x.transpose();
+  }
+  // Each ramp has slope 1 / (2 width) and a weight is a product of two: at most 2 h / (2 width)
+  // between neighbours. Nearest-cut blending jumped by up to 0.5 across the midline above the cut.
+  double jump = 0;
+  for (int f = 0; f < 3; ++f) {
+    jump = std::max(jump, (weight[f].topRows(n - 1) - weight[f].bottomRows(n - 1)).cwiseAbs().maxCoeff());
+    jump = std::max(jump, (weight[f].leftCols(n - 1) - weight[f].rightCols(n - 1)).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LE(jump, 2 * h / (2 * width) + 1e-12);
+  // On the shared cut the bone keeps half; at the junction the segments share the other half.
+  const int z0 = 40, x0 = 40;
+  EXPECT_NEAR(weight[0](x0, z0), 0.5, 1e-12);
+  EXPECT_NEAR(weight[1](x0, z0), 0.25, 1e-12);
+  EXPECT_NEAR(weight[2](x0, z0), 0.25, 1e-12);
+  EXPECT_NEAR(weight[0](0, z0), 0.5, 1e-12);  // 20 mm left of the midline: the paper's two-fragment rule
+  EXPECT_NEAR(weight[1](0, z0), 0.5, 1e-12);
+  EXPECT_NEAR(weight[1](0, z0 - 10), 0.75, 1e-12);  // 5 mm below
+  EXPECT_EQ(weight[1](0, 0), 1.0);                  // bonded beyond the width of both cuts
+  EXPECT_EQ(weight[2](n - 1, 0), 1.0);
+}
+
+TEST(BoneFragments, ANodeAmongTooManyCutPlanesIsRefusedByName) {
+  Eigen::Matrix3Xd rest = Eigen::Matrix3Xd::Zero(3, 1);
+  FragmentRegion fan{"fan", "bone", {}};
+  for (int i = 0; i < 13; ++i) {
+    const double a = 3.14159265358979 * i / 13;
+    fan.bounds.push_back(CutPlane{Eigen::Vector3d::Zero(), Eigen::Vector3d(std::cos(a), std::sin(a), 0)});
+  }
+  try {
+    splitBoneGroups(rest, {BoneGroup{"bone", {0}}}, {fan});
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("bone 'bone'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("13 cut planes"), std::string::npos) << e.what();
+  }
 }
 
 TEST(BoneFragments, AFragmentOfAFragmentInheritsItsParentsBoundsAndNamesAreUnique) {
