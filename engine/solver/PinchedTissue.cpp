@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 
+#include "mesh/MeshQuality.hpp"
 #include "solver/Model.hpp"
 
 namespace orthosim {
@@ -38,6 +39,8 @@ std::vector<PinchedTissue> findPinchedTissue(const Model& model, const Eigen::Ma
     p.threshold = maxDetF;
     ++p.elements;
     if (det <= 0) ++p.inverted;
+    const auto angles = dihedralAnglesDeg(mesh, e);
+    if (*std::min_element(angles.begin(), angles.end()) < kSliverDeg) ++p.slivers;
     p.minDetF = std::min(p.minDetF, det);
   }
   std::vector<PinchedTissue> out;
@@ -53,9 +56,14 @@ std::string describePinchedTissue(const PinchedTissue& p) {
   char figures[160];
   std::snprintf(figures, sizeof figures, "%d tetrahedra below %.3g of their volume, %d inverted, min det F %.3g", p.elements,
                 p.threshold, p.inverted, p.minDetF);
-  return "tissue moved only by " + names + " is crushed by the plan (" + figures +
-         "): the pieces move into each other there, or turn too differently for the blend across their cut; "
-         "check the bone positions";
+  std::string text = "tissue moved only by " + names + " is crushed by the plan (" + figures + ")";
+  if (p.slivers == p.elements)
+    return text + ": " + (p.elements == 1 ? "it is a sliver" : "all are slivers") +
+           " of the mesh (flat at rest), which a small difference between the pieces turns over; the rest of the "
+           "tissue is solved, a better mesh there removes it";
+  if (p.slivers > 0) text += ", " + std::to_string(p.slivers) + " of them slivers of the mesh (flat at rest)";
+  return text + ": the pieces move into each other there, or turn too differently for the blend across their cut; "
+                "check the bone positions";
 }
 
 }  // namespace orthosim

@@ -16,9 +16,14 @@ struct PinchedTissue {
   std::vector<std::string> fragments;  // every fragment its nodes follow ("fixed": fixed nodes)
   int elements = 0;                    // tetrahedra compressed below the threshold
   int inverted = 0;                    // of which det F <= 0
+  int slivers = 0;                     // of which flat at rest (min dihedral below kSliverDeg)
   double minDetF = 1.0;
   double threshold = 0.1;              // det F below which an element counts
 };
+
+// A tetrahedron this flat at rest is a sliver of the mesh: the small non-rigid motion of a blend
+// turns it over where a well-shaped one would barely change.
+constexpr double kSliverDeg = 5.0;
 
 // Elements without freedom whose det F at positions x is below maxDetF, grouped by the fragments
 // their nodes follow (blended nodes count each fragment they follow); worst group first.

@@ -40,9 +40,35 @@ TEST(PinchedTissue, BonesMovedIntoEachOtherCrushTheTissueBetweenThem) {
   EXPECT_GT(p[0].inverted, 0);
   EXPECT_LE(p[0].inverted, p[0].elements);
   EXPECT_LT(p[0].minDetF, 0.0);
+  EXPECT_EQ(p[0].slivers, 0);  // the block's cells are well shaped: the plan crushes them
   const std::string text = describePinchedTissue(p[0]);
   EXPECT_NE(text.find("A and B"), std::string::npos) << text;
   EXPECT_NE(text.find("inverted"), std::string::npos) << text;
+}
+
+// One tetrahedron 0.2 mm high over a 10 mm base, held by two bones (and a well-shaped one below
+// it with a free node, so the scene has something to solve): moving B 1 mm down turns the flat one
+// over. The report says the mesh is at fault, not the plan.
+TEST(PinchedTissue, ASliverOfTheMeshTurnedOverIsReportedAsSuch) {
+  Scene s;
+  s.mesh.rest.resize(3, 5);
+  s.mesh.rest << 0, 10, 0, 3, 3,  //
+      0, 0, 10, 3, 3,             //
+      0, 0, 0, 0.2, -8;
+  s.mesh.tets.resize(4, 2);
+  s.mesh.tets << 0, 0,  //
+      1, 2,             //
+      2, 1,             //
+      3, 4;
+  s.fragments = {FragmentSpec{"A", {0, 1}, false}, FragmentSpec{"B", {2, 3}, false}};
+  const Model model(s);
+  const std::vector<PinchedTissue> p = findPinchedTissue(model, movedB(model, {0, 0, -1}).x);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].inverted, 1);
+  EXPECT_EQ(p[0].slivers, 1);
+  const std::string text = describePinchedTissue(p[0]);
+  EXPECT_NE(text.find("it is a sliver of the mesh"), std::string::npos) << text;
+  EXPECT_EQ(text.find("check the bone positions"), std::string::npos) << text;
 }
 
 TEST(PinchedTissue, NothingToReportAtRestInARigidMotionOrASlide) {
