@@ -53,6 +53,12 @@ double SoftTissueEnergy::energy(const Eigen::Matrix3Xd& x) const {
   return sum;  // an inverted element contributes +inf
 }
 
+double SoftTissueEnergy::roundingScale() const {
+  double volume = 0.0;
+  for (int e : active_) volume += volume_[e];
+  return material_.mu * volume;
+}
+
 double SoftTissueEnergy::minDetF(const Eigen::Matrix3Xd& x) const {
   double minDet = std::numeric_limits<double>::infinity();
   const int m = static_cast<int>(active_.size());

@@ -33,6 +33,10 @@ class SoftTissueEnergy {
   // dV/dx, 3 x numNodes. Requires every det F > 0.
   Eigen::Matrix3Xd gradient(const Eigen::Matrix3Xd& x) const;
   double minDetF(const Eigen::Matrix3Xd& x) const;
+  // mu times the active elements' rest volume: the size of the terms energy() adds up
+  // (mu/2 tr(F^T F) is about 3/2 mu per unit volume at any small strain), so its rounding error
+  // is about machine epsilon times this however small the energy itself is (a rigid motion).
+  double roundingScale() const;
 
   double elementEnergy(int e, const Eigen::Matrix3Xd& x) const;
   Vector12d elementGradient(int e, const Eigen::Matrix3Xd& x) const;

@@ -180,8 +180,10 @@ class Newton {
     const double e0 = model_.totalEnergy(x);
     const double slope = r.dot(dz);
     // Below this predicted decrease the energy difference is lost in rounding; accept a valid
-    // full step there (Newton is converging quadratically) instead of stalling.
-    const double roundoff = 1e-12 * std::max(std::abs(e0), 1e-30);
+    // full step there (Newton is converging quadratically) instead of stalling. The rounding
+    // error scales with the terms summed, not with the energy: near a rigid motion the energy is
+    // close to 0 while each element still adds and cancels terms of size mu V.
+    const double roundoff = 1e-12 * std::max(std::abs(e0), model_.energy().roundingScale());
     for (double alpha = 1.0; alpha > 1e-10; alpha *= 0.5) {
       SimState trial = x;
       coupling_.step(dz, alpha, trial);
