@@ -72,7 +72,9 @@ GpuMesh::GpuMesh(const SurfaceMesh& rest, const std::string& what)
     pointInterleaved(b == &current_ ? 0 : 2);
   }
   if (rest.hasUv()) uv_ = attributeBuffer(4, 2, toFloats(rest.uv), GL_STATIC_DRAW);
-  scalars_ = attributeBuffer(5, 1, std::vector<float>(static_cast<size_t>(rest.numVertices()), 0.0f), GL_DYNAMIC_DRAW);
+  std::vector<float> scalars(static_cast<size_t>(2 * rest.numVertices()), 0.0f);  // (value, in map) a vertex
+  for (size_t i = 1; i < scalars.size(); i += 2) scalars[i] = 1.0f;
+  scalars_ = attributeBuffer(5, 2, scalars, GL_DYNAMIC_DRAW);
   indices_ = newBuffer();
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.get());
   const Eigen::Matrix<unsigned, 3, Eigen::Dynamic> idx = triangles_.cast<unsigned>();
@@ -111,11 +113,18 @@ void GpuMesh::updatePositions(const Eigen::Matrix3Xd& x) {
   checkGl(what_ + ": updating positions");
 }
 
-void GpuMesh::updateScalars(const Eigen::VectorXd& values) {
+void GpuMesh::updateScalars(const Eigen::VectorXd& values, const std::vector<char>& inMap) {
   if (values.size() != numVertices())
     throw RenderError(what_ + ": " + std::to_string(values.size()) + " colour-map values for " +
                       std::to_string(numVertices()) + " vertices");
-  const std::vector<float> f = toFloats(values);
+  if (!inMap.empty() && inMap.size() != static_cast<size_t>(numVertices()))
+    throw RenderError(what_ + ": " + std::to_string(inMap.size()) + " colour-map flags for " +
+                      std::to_string(numVertices()) + " vertices");
+  std::vector<float> f(static_cast<size_t>(2 * values.size()));
+  for (Eigen::Index i = 0; i < values.size(); ++i) {
+    f[static_cast<size_t>(2 * i)] = static_cast<float>(values[i]);
+    f[static_cast<size_t>(2 * i + 1)] = inMap.empty() || inMap[static_cast<size_t>(i)] ? 1.0f : 0.0f;
+  }
   glBindBuffer(GL_ARRAY_BUFFER, scalars_.get());
   glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(f.size() * sizeof(float)), f.data());
   checkGl(what_ + ": updating colour-map values");

@@ -19,8 +19,9 @@ class GpuMesh {
   int numVertices() const { return static_cast<int>(weld_.size()); }
   // New positions of the same vertices (3 x numVertices); normals are recomputed.
   void updatePositions(const Eigen::Matrix3Xd& x);
-  // One value per vertex (mm) for ColorSource "scalar".
-  void updateScalars(const Eigen::VectorXd& values);
+  // One value per vertex (mm) for ColorSource "scalar" and, optionally, a flag per vertex:
+  // 0 draws it without a value (grey, e.g. outside a region of interest); empty: all 1.
+  void updateScalars(const Eigen::VectorXd& values, const std::vector<char>& inMap = {});
   const Eigen::Matrix3Xd& positions() const { return positions_; }
   void draw() const;
 

@@ -207,11 +207,11 @@ void Renderer::updateSkin(const Eigen::Matrix3Xd& positions) {
   impl_->gpu->skin->updatePositions(positions);
 }
 
-void Renderer::setSkinValues(const Eigen::VectorXd& valuesMm) {
+void Renderer::setSkinValues(const Eigen::VectorXd& valuesMm, const std::vector<char>& inMap) {
   if (!impl_->gpu->skin) throw RenderError("setSkinValues: no skin set (setSkin first)");
   if (!valuesMm.allFinite()) throw RenderError("skin colour-map values: a value is not finite");
   GlContext::Binding bound(impl_->context);
-  impl_->gpu->skin->updateScalars(valuesMm);
+  impl_->gpu->skin->updateScalars(valuesMm, inMap);
   impl_->gpu->skinValues = true;
 }
 

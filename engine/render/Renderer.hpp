@@ -49,7 +49,9 @@ class Renderer {
   // uploaded. Throws RenderError without a skin or for another vertex count.
   void updateSkin(const Eigen::Matrix3Xd& positions);
   // Values for ColorMap::Difference, one per skin vertex, in mm (e.g. signedDifference()).
-  void setSkinValues(const Eigen::VectorXd& valuesMm);
+  // `inMap` (empty, or one flag per vertex): vertices flagged 0 are drawn grey, as having no
+  // value (e.g. outside an error measurement's region of interest).
+  void setSkinValues(const Eigen::VectorXd& valuesMm, const std::vector<char>& inMap = {});
   // The skin's current positions (rest until updateSkin), e.g. to frame a camera.
   const Eigen::Matrix3Xd& skinPositions() const;
 

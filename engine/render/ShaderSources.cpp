@@ -11,7 +11,7 @@ layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec3 aRestPosition;
 layout(location = 3) in vec3 aRestNormal;
 layout(location = 4) in vec2 aUv;
-layout(location = 5) in float aScalar;
+layout(location = 5) in vec2 aScalar;  // value, 1 in the map / 0 without a value
 uniform mat4 uModel;       // rigid pose (bone pieces); identity for the skin
 uniform mat4 uView;
 uniform mat4 uProjection;
@@ -20,6 +20,7 @@ uniform int uValueSource;  // 0 none, 1 displacement from rest, 2 aScalar
 uniform float uSpecular;
 out vec2 vUv;
 out float vValue;
+out float vInMap;
 out vec2 vLight;           // diffuse + ambient factor of the front (x) and back (y) side
 out vec2 vHighlight;       // specular of the front and back side
 void main() {
@@ -36,7 +37,8 @@ void main() {
   vHighlight = uSpecular * vec2(pow(max(dot(n, halfway), 0.0), 24.0), pow(max(dot(-n, halfway), 0.0), 24.0));
   vUv = aUv;
   float displacement = uAtRest == 1 ? 0.0 : length(aPosition - aRestPosition);
-  vValue = uValueSource == 1 ? displacement : aScalar;
+  vValue = uValueSource == 1 ? displacement : aScalar.x;
+  vInMap = uValueSource == 2 ? aScalar.y : 1.0;
   gl_Position = uProjection * eye;
 }
 )";
@@ -44,6 +46,7 @@ void main() {
 const char* const kSurfaceFragment = R"(#version 330 core
 in vec2 vUv;
 in float vValue;
+in float vInMap;
 in vec2 vLight;
 in vec2 vHighlight;
 uniform int uColorSource;  // 0 flat uColor, 1 texture, 2 vValue through the ramp
@@ -59,6 +62,7 @@ void main() {
     float t = clamp((vValue - uRange.x) / (uRange.y - uRange.x), 0.0, 1.0);
     float n = float(textureSize(uRamp, 0).x);  // texel centres: t = 0 and 1 hit the end colours
     base = texture(uRamp, vec2((t * (n - 1.0) + 0.5) / n, 0.5)).rgb;
+    if (vInMap < 0.5) base = vec3(0.6);  // no value here (outside the region of interest)
   }
   float light = gl_FrontFacing ? vLight.x : vLight.y;
   float highlight = gl_FrontFacing ? vHighlight.x : vHighlight.y;

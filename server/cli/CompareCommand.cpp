@@ -67,11 +67,11 @@ Eigen::Matrix3Xf mapColours(const Comparison& c, double rangeMm) {
 }
 
 // The predicted skin coloured by its signed error on the renderer's difference scale, with its
-// legend. The whole skin is coloured: the renderer has no mask for the region of interest.
+// legend; grey outside the region of interest, as in the map file.
 void renderErrorImage(const SurfaceMesh& predicted, const Comparison& c, const AnatomicalFrame& frame, const CompareOptions& o) {
   render::Renderer renderer(800, 600);
   renderer.setSkin(predicted);
-  renderer.setSkinValues(c.error.distance);
+  renderer.setSkinValues(c.error.distance, c.inRegion);
   render::RenderOptions options;
   options.colorMap = render::ColorMap::Difference;
   options.differenceRangeMm = o.rangeMm;
@@ -115,7 +115,8 @@ int runCompare(const CompareOptions& o) {
     }
     if (!o.imagePath.empty()) {
       renderErrorImage(predicted, c, in.frame, o);
-      std::cout << "error image (" << o.view << " view, whole skin) written to " << o.imagePath << "\n";
+      std::cout << "error image (" << o.view << " view" << (c.hasRegion ? ", grey outside the region of interest" : "")
+                << ") written to " << o.imagePath << "\n";
     }
     if (!o.jsonPath.empty()) {
       std::ofstream out(o.jsonPath);

@@ -88,7 +88,10 @@ TEST_F(CompareCommand, SkinMovedForwardShowsTheMoveAtEveryLandmark) {
     EXPECT_NEAR(e[1].get<double>(), 0.0, 1e-4) << l["name"];
     EXPECT_NEAR(e[2].get<double>(), 0.0, 1e-4) << l["name"];
   }
-  // The frontal image: the face, now in front of the reference, is red (outside) at the centre.
+  // The frontal image: the face, now in front of the reference, is red (outside) at the centre;
+  // the neck and the back of the head are grey (tests/render: Renderer.DifferenceMapGreys...).
+  EXPECT_NE(read("out.txt").find("grey outside the region of interest) written to " + path("forward.png")), std::string::npos)
+      << read("out.txt");
   const RgbImage image = render::readImage(path("forward.png"));
   ASSERT_EQ(image.width, 800);
   ASSERT_EQ(image.height, 600);

@@ -63,6 +63,8 @@ TEST(RenderInput, BadSkinsAreRefusedByName) {
   r.setSkin(uv, gradientImage(4, 4));
   EXPECT_NE(errorOf([&] { r.updateSkin(Eigen::Matrix3Xd::Zero(3, 4)); }).find("4 new positions for 3 vertices"), std::string::npos);
   EXPECT_NE(errorOf([&] { r.setSkinValues(Eigen::VectorXd::Zero(2)); }).find("2 colour-map values for 3 vertices"), std::string::npos);
+  EXPECT_NE(errorOf([&] { r.setSkinValues(Eigen::VectorXd::Zero(3), {1, 0}); }).find("2 colour-map flags for 3 vertices"),
+            std::string::npos);
   RenderOptions o;
   o.skinOpacity = 0;
   EXPECT_NE(errorOf([&] { r.render(Camera{}, o); }).find("opacity"), std::string::npos);

@@ -135,6 +135,28 @@ TEST_F(Renderer, DifferenceMapColoursBySignOnTheRightSide) {
   EXPECT_GT(pl.z() - pl.x(), 40) << pl.transpose();
 }
 
+// Vertices flagged out of the map (outside a region of interest) are grey whatever their value;
+// the rest keep the scale's colour.
+TEST_F(Renderer, DifferenceMapGreysVerticesOutOfTheMap) {
+  auto r = phantomRenderer();
+  const Eigen::Matrix3Xd& v = model().tissue.skin.vertices;
+  std::vector<char> inMap(static_cast<size_t>(v.cols()));
+  for (Eigen::Index i = 0; i < v.cols(); ++i) inMap[static_cast<size_t>(i)] = model().spec.frame.right.dot(v.col(i)) <= 0;
+  RenderOptions o;
+  o.colorMap = ColorMap::Difference;
+  r->setSkinValues(Eigen::VectorXd::Constant(v.cols(), 2.0), inMap);
+  const Camera cam = camera(ClinicalView::Frontal, *r, o);
+  const RgbImage img = r->render(cam, o);
+  const ProjectedPoint nose = cam.project(softLandmark("pronasale"), kWidth, kHeight);
+  const ProjectedPoint right = cam.project(softLandmark("cheek_right"), kWidth, kHeight);
+  const ProjectedPoint left = cam.project(softLandmark("cheek_left"), kWidth, kHeight);
+  const Eigen::Vector3i pr = pixel(img, int(0.5 * (nose.x + right.x)), int(0.5 * (nose.y + right.y)));
+  const Eigen::Vector3i pl = pixel(img, int(0.5 * (nose.x + left.x)), int(0.5 * (nose.y + left.y)));
+  EXPECT_LE((pr - Eigen::Vector3i::Constant(pr.x())).cwiseAbs().maxCoeff(), 3) << "right cheek, out of the map: " << pr.transpose();
+  EXPECT_GT(pr.x(), 40) << "lit grey, not background: " << pr.transpose();
+  EXPECT_GT(pl.x() - pl.z(), 40) << "left cheek, in the map (+2 mm: red): " << pl.transpose();
+}
+
 // Profile: the nose tip is the silhouette's most anterior point, on the image's right (left for
 // the left profile); frontal: the silhouette is symmetric; the presets look from where they say.
 TEST_F(Renderer, ViewPresetsDifferAsExpected) {
