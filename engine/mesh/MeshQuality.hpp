@@ -20,10 +20,6 @@ struct MeshQuality {
   double minVolume = 0;  // mm^3, signed: negative when a tet is inverted
 };
 
-// A tetrahedron this flat at rest is a sliver of the mesh: the small non-rigid motion of a blend
-// turns it over where a well-shaped one would barely change.
-constexpr double kSliverDeg = 5.0;
-
 // The six interior dihedral angles of tet e at rest (degrees), at its edges 01, 02, 03, 12, 13, 23.
 std::array<double, 6> dihedralAnglesDeg(const TetMesh& mesh, int e);
 // Circumradius over shortest edge of tet e at rest; infinite for a flat tet.

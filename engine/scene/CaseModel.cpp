@@ -4,7 +4,6 @@
 #include <sstream>
 
 #include "mesh/BoundaryFaces.hpp"
-#include "mesh/MeshQuality.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
@@ -79,7 +78,7 @@ std::vector<ContactSpec> caseContacts(const CaseSpec& spec, const CaseTissue& ti
 
 }  // namespace
 
-Scene caseScene(const CaseSpec& spec, const CaseTissue& tissue, FragmentCoupling* couplingOut, SliverWeightsReport* slivers) {
+Scene caseScene(const CaseSpec& spec, const CaseTissue& tissue, FragmentCoupling* couplingOut) {
   if (tissue.boneNodes.size() != spec.bones.size())
     throw SceneError(spec.file + ": the tissue has bonded groups for " + std::to_string(tissue.boneNodes.size()) +
                      " bones, the case lists " + std::to_string(spec.bones.size()));
@@ -99,8 +98,6 @@ Scene caseScene(const CaseSpec& spec, const CaseTissue& tissue, FragmentCoupling
   } catch (const std::invalid_argument& e) {
     throw SceneError(spec.file + ": cuts: " + e.what());
   }
-  const SliverWeightsReport evened = evenSliverWeights(scene.mesh, coupling, kSliverDeg);
-  if (slivers) *slivers = evened;
   std::set<int> coupled;
   for (size_t f = 0; f < coupling.fragments.size(); ++f) {
     scene.fragments.push_back({coupling.fragments[f], coupling.nodes[f], false});
@@ -138,9 +135,7 @@ CaseModel buildCaseModel(const CaseSpec& spec, Resolution resolution, const Case
   m.spec = spec;
   m.resolution = resolution;
   m.tissue = buildCaseTissue(spec, resolution, options);
-  SliverWeightsReport slivers;
-  m.scene = caseScene(spec, m.tissue, &m.coupling, &slivers);
-  if (slivers.slivers > 0) m.tissue.report.push_back(describe(slivers));
+  m.scene = caseScene(spec, m.tissue, &m.coupling);
   for (size_t f = 0; f < m.coupling.fragments.size(); ++f) {
     if (!m.coupling.nodes[f].empty()) continue;
     bool blended = false;

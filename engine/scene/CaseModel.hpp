@@ -10,7 +10,6 @@
 #include "scene/CaseFile.hpp"
 #include "scene/CaseTissue.hpp"
 #include "scene/Scene.hpp"
-#include "scene/SliverWeights.hpp"
 
 namespace orthosim {
 
@@ -28,11 +27,9 @@ struct CaseModel {
   SurfaceMesh deformedSkin(const Eigen::Matrix3Xd& x) const;
 };
 
-// Builds the scene of `spec` on `tissue` (bone groups split by the cuts, the weights of bone-only
-// slivers evened out (scene/SliverWeights.hpp), fixed bones held, volume node sets fixed except
-// where a bone group claims the node). Throws SceneError.
-Scene caseScene(const CaseSpec& spec, const CaseTissue& tissue, FragmentCoupling* coupling = nullptr,
-                SliverWeightsReport* slivers = nullptr);
+// Builds the scene of `spec` on `tissue` (bone groups split by the cuts, fixed bones held, volume
+// node sets fixed except where a bone group claims the node). Throws SceneError.
+Scene caseScene(const CaseSpec& spec, const CaseTissue& tissue, FragmentCoupling* coupling = nullptr);
 
 // Everything: tissue (cached when options.cacheDir is set), scene, skin embedding.
 CaseModel buildCaseModel(const CaseSpec& spec, Resolution resolution, const CaseTissueOptions& options = {});

@@ -8,8 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "mesh/MeshQuality.hpp"  // kSliverDeg
-
 namespace orthosim {
 
 class Model;
@@ -22,6 +20,10 @@ struct PinchedTissue {
   double minDetF = 1.0;
   double threshold = 0.1;              // det F below which an element counts
 };
+
+// A tetrahedron this flat at rest is a sliver of the mesh: the small non-rigid motion of a blend
+// turns it over where a well-shaped one would barely change.
+constexpr double kSliverDeg = 5.0;
 
 // Elements without freedom whose det F at positions x is below maxDetF, grouped by the fragments
 // their nodes follow (blended nodes count each fragment they follow); worst group first.
