@@ -30,9 +30,7 @@ std::vector<ActiveContact> ContactEnergy::active(const Eigen::Matrix3Xd& x, cons
       const SurfacePoint hit = pair.surface->query(local);
       ++queries_;
       memo.at[k] = local;
-      // Outside by d, a node cannot reach the surface before it moves d, nor its inside: except
-      // round the rim of an open surface (a cut bone), so a node nearest the rim is asked again.
-      memo.clearance[k] = hit.onRim ? 0.0 : std::max(0.0, hit.distance);
+      memo.clearance[k] = std::max(0.0, hit.distance);
       if (hit.distance < 0) out.push_back({pair.nodes[k], hit.distance, pose.R * hit.normal, pair.stiffness});
     }
   }

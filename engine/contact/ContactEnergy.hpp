@@ -46,8 +46,7 @@ class ContactEnergy {
  private:
   // Per pair and node: where it was last queried (rest frame of the surface) and how far outside
   // it was. A node that has since moved less than that distance relative to the surface is still
-  // outside: no query needed (the distance is 1-Lipschitz). Not for a node nearest the rim of an
-  // open surface: it can come round the rim to the inside without crossing the surface.
+  // outside: no query needed (the distance is 1-Lipschitz).
   struct Memo {
     std::vector<Eigen::Vector3d> at;
     std::vector<double> clearance;  // distance outside at `at`; 0: query again

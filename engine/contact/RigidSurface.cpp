@@ -115,7 +115,6 @@ SurfacePoint RigidSurface::query(const Eigen::Vector3d& p) const {
   const Eigen::Vector3d pseudo = impl_->pseudoNormal(t, out.closest, border);
   // Nearest to the rim of an open surface: beside it, not inside.
   const double sign = !border && d.dot(pseudo) < 0 ? -1.0 : 1.0;
-  out.onRim = border;
   out.distance = sign * len;
   // Off the surface the gradient of the distance is the unit vector from the closest point; on it,
   // the pseudo-normal.

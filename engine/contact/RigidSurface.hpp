@@ -19,9 +19,6 @@ struct SurfacePoint {
   Eigen::Vector3d closest;    // nearest point on the surface
   Eigen::Vector3d normal;     // unit, outward: the direction that increases `distance`
   int triangle = -1;          // the surface's triangle (its column) that holds `closest`
-  // `closest` lies on the rim of an open surface: `distance` is positive by convention there, and
-  // a small move can bring the point round the rim to the inside without crossing the surface.
-  bool onRim = false;
 };
 
 class RigidSurface {
