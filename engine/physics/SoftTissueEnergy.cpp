@@ -27,14 +27,17 @@ SoftTissueEnergy::SoftTissueEnergy(const TetMesh& mesh, const NeoHookean& materi
     restInverse_[e] = Dm.inverse();
     volume_[e] = Dm.determinant() / 6.0;
   }
-  active_.resize(mesh.numTets());
-  for (int e = 0; e < mesh.numTets(); ++e) active_[e] = e;
+  std::vector<int> all(mesh.numTets());
+  for (int e = 0; e < mesh.numTets(); ++e) all[e] = e;
+  restrictTo(std::move(all));
 }
 
 void SoftTissueEnergy::restrictTo(std::vector<int> elements) {
   for (int e : elements)
     if (e < 0 || e >= numTets()) throw std::out_of_range("SoftTissueEnergy::restrictTo: element " + std::to_string(e));
   active_ = std::move(elements);
+  activeVolume_ = 0;
+  for (int e : active_) activeVolume_ += volume_[e];
 }
 
 Eigen::Matrix3d SoftTissueEnergy::deformationGradient(int e, const Eigen::Matrix3Xd& x) const {
@@ -53,11 +56,7 @@ double SoftTissueEnergy::energy(const Eigen::Matrix3Xd& x) const {
   return sum;  // an inverted element contributes +inf
 }
 
-double SoftTissueEnergy::roundingScale() const {
-  double volume = 0.0;
-  for (int e : active_) volume += volume_[e];
-  return material_.mu * volume;
-}
+double SoftTissueEnergy::roundingScale() const { return material_.mu * activeVolume_; }
 
 double SoftTissueEnergy::minDetF(const Eigen::Matrix3Xd& x) const {
   double minDet = std::numeric_limits<double>::infinity();

@@ -48,6 +48,7 @@ class SoftTissueEnergy {
   std::vector<Eigen::Matrix3d, Eigen::aligned_allocator<Eigen::Matrix3d>> restInverse_;  // Dm^-1
   std::vector<double> volume_;
   std::vector<int> active_;
+  double activeVolume_ = 0;  // rest volume of the active elements
 };
 
 }  // namespace orthosim

@@ -22,6 +22,9 @@ struct ColorScale {
   std::vector<Eigen::Vector3f> sample(int n = 256) const;
 };
 
+// A vertex without a value (outside a region of interest): grey on every scale.
+inline const Eigen::Vector3f kNoValueColor(0.6f, 0.6f, 0.6f);
+
 ColorScale displacementScale(double maxMm = 10.0);
 ColorScale differenceScale(double rangeMm = 3.0);
 

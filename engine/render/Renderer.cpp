@@ -117,6 +117,7 @@ void Renderer::Impl::setSkinUniforms(const RenderOptions& o, bool atRest) {
   s.set("uColorSource", static_cast<int>(kRamp));
   const ColorScale scale = map == ColorMap::Displacement ? displacementScale(o.displacementMaxMm) : differenceScale(o.differenceRangeMm);
   s.set("uRange", Eigen::Vector2f(float(scale.min), float(scale.max)));
+  s.set("uNoValue", withAlpha(kNoValueColor, 1.0f));
   (map == ColorMap::Displacement ? gpu->displacementRamp : gpu->differenceRamp).bind(1);
 }
 

@@ -54,6 +54,7 @@ uniform vec4 uColor;       // flat colour; its alpha is the opacity for every so
 uniform sampler2D uTexture;
 uniform sampler2D uRamp;
 uniform vec2 uRange;       // values at the ramp's two ends
+uniform vec4 uNoValue;     // colour of a vertex without a value (kNoValueColor)
 out vec4 fragColor;
 void main() {
   vec3 base = uColor.rgb;
@@ -62,7 +63,7 @@ void main() {
     float t = clamp((vValue - uRange.x) / (uRange.y - uRange.x), 0.0, 1.0);
     float n = float(textureSize(uRamp, 0).x);  // texel centres: t = 0 and 1 hit the end colours
     base = texture(uRamp, vec2((t * (n - 1.0) + 0.5) / n, 0.5)).rgb;
-    if (vInMap < 0.5) base = vec3(0.6);  // no value here (outside the region of interest)
+    if (vInMap < 0.5) base = uNoValue.rgb;  // no value here (outside the region of interest)
   }
   float light = gl_FrontFacing ? vLight.x : vLight.y;
   float highlight = gl_FrontFacing ? vHighlight.x : vHighlight.y;

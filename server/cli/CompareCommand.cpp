@@ -62,7 +62,7 @@ Eigen::Matrix3Xf mapColours(const Comparison& c, double rangeMm) {
   const render::ColorScale scale = render::differenceScale(rangeMm);
   Eigen::Matrix3Xf out(3, c.error.distance.size());
   for (Eigen::Index i = 0; i < out.cols(); ++i)
-    out.col(i) = !c.inRegion.empty() && !c.inRegion[i] ? Eigen::Vector3f(0.6f, 0.6f, 0.6f) : scale.colorAt(c.error.distance[i]);
+    out.col(i) = !c.inRegion.empty() && !c.inRegion[i] ? render::kNoValueColor : scale.colorAt(c.error.distance[i]);
   return out;
 }
 
