@@ -143,11 +143,17 @@ int main(int argc, char** argv) {
                     "~/.local/share/orthosim)");
   serve->add_option("--cases", serveOptions.casesDir, "Folder of case folders (DIR/<id>/case.json) to serve besides the phantom");
   serve->add_option("--token", serveOptions.token, "Access token required on /api and /ws (default: $ORTHOSIM_TOKEN)");
+  serve->add_option("--token-file", serveOptions.tokenFile,
+                    "Without --token or $ORTHOSIM_TOKEN: read the token from this file, or write a random one there");
+  serve->add_flag("--insecure", serveOptions.insecure,
+                  "Allow a --host other than the loopback without a token (anyone who reaches the port can plan)");
   serve->add_option("--allow-origin", serveOptions.allowedOrigins,
                     "Origin (e.g. http://planning.example:8080) whose pages may open the WebSocket; '*' allows any");
-  serve->add_option("--allow-host", serveOptions.allowedHosts, "Host name clients may use besides localhost and the bound address");
+  serve->add_option("--allow-host", serveOptions.allowedHosts, "Host name clients may use besides localhost, addresses and this machine's name (\"*\": any)");
   serve->add_option("--fine-workers", serveOptions.fineWorkers, "Fine jobs run at once")->check(CLI::Range(1, 16));
   serve->add_option("--max-sessions", serveOptions.maxSessions, "Planning sessions open at once")->check(CLI::Range(1, 1024));
+  serve->add_option("--unopened-timeout", serveOptions.unopenedTimeoutSeconds,
+                    "Seconds a session may stay without opening a case before it is closed")->check(CLI::Range(1, 86400));
   serve->add_flag("!--no-warm-up", serveOptions.warmUp, "Do not build the phantom's coarse model at start");
 
   try {

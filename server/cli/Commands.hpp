@@ -116,11 +116,14 @@ struct ServeOptions {
   std::string webDir;  // the browser page folder
   std::string dataDir;   // empty: $ORTHOSIM_DATA, else $XDG_DATA_HOME/orthosim, else ~/.local/share/orthosim
   std::string casesDir;  // case folders besides the phantom (optional)
-  std::string token;     // empty: $ORTHOSIM_TOKEN if set
+  std::string token;     // empty: $ORTHOSIM_TOKEN if set, else the token file's
+  std::string tokenFile;  // read, or made with a random token when absent (net/TokenFile.hpp)
+  bool insecure = false;  // allow a bind off the loopback without a token
   std::vector<std::string> allowedOrigins, allowedHosts;
   bool warmUp = true;    // build the phantom's coarse model at start
   int fineWorkers = 1;
   int maxSessions = 32;
+  int unopenedTimeoutSeconds = 300;  // a session that opens no case in this time is closed
 };
 // Serves HTTP (and later the WebSocket API) until SIGINT or SIGTERM; 0 on a clean stop, 1 when
 // the server cannot start (bad host, port taken, no web folder).

@@ -5,6 +5,7 @@
 
 #include "cli/Commands.hpp"
 #include "net/Server.hpp"
+#include "net/TokenFile.hpp"
 
 namespace orthosim::cli {
 namespace fs = std::filesystem;
@@ -25,6 +26,11 @@ net::ServerOptions serverOptions(const ServeOptions& options) {
   server.access.token = options.token;
   if (server.access.token.empty())
     if (const char* t = std::getenv("ORTHOSIM_TOKEN")) server.access.token = t;
+  if (server.access.token.empty() && !options.tokenFile.empty()) {
+    server.access.token = net::loadOrCreateToken(options.tokenFile);
+    std::cerr << "orthosim serve: access token in " << options.tokenFile << "\n";
+  }
+  server.insecure = options.insecure;
   server.access.allowedOrigins = options.allowedOrigins;
   server.access.allowedHosts = options.allowedHosts;
   server.planning.dataDir = fs::absolute(options.dataDir.empty() ? defaultDataDir() : fs::path(options.dataDir));
@@ -43,6 +49,7 @@ net::ServerOptions serverOptions(const ServeOptions& options) {
   }
   server.planning.fineWorkers = options.fineWorkers;
   server.planning.maxSessions = options.maxSessions;
+  server.webSocket.unopenedTimeout = std::chrono::seconds(options.unopenedTimeoutSeconds);
   if (options.warmUp) server.warmUpCase = "phantom-0";
   return server;
 }

@@ -1,6 +1,7 @@
 #include "net/AccessPolicy.hpp"
 
 #include <algorithm>
+#include <boost/asio/ip/address.hpp>
 #include <cctype>
 
 namespace orthosim::net {
@@ -24,6 +25,16 @@ int hexValue(char c) {
   c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (c >= 'a' && c <= 'f') return c - 'a' + 10;
   return -1;
+}
+
+// "10.0.0.5" or "[fe80::1]": a page reaching the server by address has no name an attacker could
+// point at it, so addresses pass the Host check.
+bool isAddressLiteral(const std::string& name) {
+  std::string bare = name;
+  if (bare.size() > 2 && bare.front() == '[' && bare.back() == ']') bare = bare.substr(1, bare.size() - 2);
+  boost::system::error_code ec;
+  boost::asio::ip::make_address(bare, ec);
+  return !ec;
 }
 
 }  // namespace
@@ -59,17 +70,20 @@ std::optional<std::string> queryValue(std::string_view query, std::string_view k
   return std::nullopt;
 }
 
-AccessPolicy::AccessPolicy(AccessOptions options, std::string boundAddress) : options_(std::move(options)) {
-  hosts_ = {"localhost", "127.0.0.1", "[::1]", lower(boundAddress)};
+AccessPolicy::AccessPolicy(AccessOptions options, std::string boundAddress, std::vector<std::string> machineNames)
+    : options_(std::move(options)) {
+  hosts_ = {"localhost", lower(boundAddress)};
+  for (const std::string& h : machineNames) hosts_.push_back(lower(h));
   for (const std::string& h : options_.allowedHosts) hosts_.push_back(lower(h));
+  anyHost_ = std::find(hosts_.begin(), hosts_.end(), "*") != hosts_.end();
 }
 
 std::optional<Refusal> AccessPolicy::checkHost(const Request& request) const {
-  if (options_.anyHost) return std::nullopt;
+  if (anyHost_) return std::nullopt;
   auto it = request.find(http::field::host);
   if (it == request.end()) return std::nullopt;  // HTTP/1.0 clients; browsers always send Host
   const std::string name = hostName(std::string_view(it->value().data(), it->value().size()));
-  if (std::find(hosts_.begin(), hosts_.end(), name) != hosts_.end()) return std::nullopt;
+  if (isAddressLiteral(name) || std::find(hosts_.begin(), hosts_.end(), name) != hosts_.end()) return std::nullopt;
   return Refusal{http::status::forbidden, "bad_host",
                  "Host '" + name + "' is not a name of this server (allow it with --allow-host)"};
 }

@@ -1,7 +1,8 @@
 #pragma once
 // Who may use the server. Host check: a browser tricked by DNS rebinding into sending a request
-// for evil.example to our loopback port gets 403 (only names of this server are accepted when it
-// is bound to a specific address). Token: when set, /api and /ws need it, as
+// for evil.example to this server gets 403, however the server is bound: accepted are the
+// loopback names, IP literals (rebinding needs a DNS name), the bound address, this machine's
+// host name when bound to other than the loopback, and the names given with --allow-host. Token: when set, /api and /ws need it, as
 // "Authorization: Bearer TOKEN" or "?token=TOKEN" (a browser's WebSocket cannot send headers).
 // Origin: a WebSocket upgrade from a page of another origin is refused unless allowed.
 #include <optional>
@@ -16,8 +17,7 @@ namespace orthosim::net {
 struct AccessOptions {
   std::string token;                        // empty: no token needed
   std::vector<std::string> allowedOrigins;  // besides the server's own; "*" allows any
-  std::vector<std::string> allowedHosts;    // besides localhost, 127.0.0.1, [::1], the bound address
-  bool anyHost = false;                     // bound to every interface (0.0.0.0): any Host
+  std::vector<std::string> allowedHosts;    // host names besides those above; "*" accepts any (the operator's choice)
 };
 
 struct Refusal {
@@ -29,7 +29,8 @@ struct Refusal {
 class AccessPolicy {
  public:
   AccessPolicy() = default;
-  AccessPolicy(AccessOptions options, std::string boundAddress);
+  // `machineNames`: this machine's host names, accepted as Host when bound off the loopback.
+  AccessPolicy(AccessOptions options, std::string boundAddress, std::vector<std::string> machineNames = {});
 
   std::optional<Refusal> checkHost(const Request& request) const;
   std::optional<Refusal> checkToken(const Request& request, const RequestTarget& target) const;
@@ -38,6 +39,7 @@ class AccessPolicy {
  private:
   AccessOptions options_;
   std::vector<std::string> hosts_;
+  bool anyHost_ = false;
 };
 
 // The host name of a Host header value ("127.0.0.1:8080" -> "127.0.0.1", "[::1]:80" -> "[::1]"),

@@ -79,6 +79,10 @@ void HttpSession::send(Response&& response, bool closeAfter) {
   stream_.expires_after(limits_.idleTimeout);
   std::visit(
       [&](auto& message) {
+        // No page of another site may frame the planner (clickjacking) or sniff our types.
+        message.set(http::field::x_frame_options, "DENY");
+        message.set("Content-Security-Policy", "frame-ancestors 'none'");
+        message.set("X-Content-Type-Options", "nosniff");
         http::async_write(stream_, message,
                           beast::bind_front_handler(&HttpSession::onWrite, shared_from_this(), closeAfter));
       },

@@ -11,10 +11,14 @@
 namespace orthosim::net {
 namespace beast = boost::beast;
 using boost::asio::ip::tcp;
+namespace {
+constexpr std::chrono::milliseconds kFirstDelay{10}, kMaxDelay{1000};
+constexpr std::chrono::seconds kLogInterval{10};
+}  // namespace
 
 Listener::Listener(boost::asio::io_context& io, const tcp::endpoint& endpoint,
                    std::shared_ptr<const ConnectionContext> context)
-    : io_(io), acceptor_(boost::asio::make_strand(io)), context_(std::move(context)) {
+    : io_(io), acceptor_(boost::asio::make_strand(io)), retry_(acceptor_.get_executor()), context_(std::move(context)) {
   beast::error_code ec;
   const auto check = [&](const char* step) {
     if (ec) {
@@ -42,11 +46,26 @@ void Listener::accept() {
 
 void Listener::onAccept(beast::error_code ec, tcp::socket socket) {
   if (ec == boost::asio::error::operation_aborted) return;  // shutting down
-  if (ec)
-    std::cerr << "orthosim serve: accept failed: " << ec.message() << "\n";  // e.g. out of file descriptors
-  else
-    std::make_shared<HttpSession>(std::move(socket), context_)->start();
+  if (ec) return backOff(ec);  // e.g. out of file descriptors: the pending connection stays queued
+  delay_ = std::chrono::milliseconds(0);
+  std::make_shared<HttpSession>(std::move(socket), context_)->start();
   accept();
+}
+
+void Listener::backOff(const beast::error_code& ec) {
+  ++failures_;
+  const auto now = std::chrono::steady_clock::now();
+  if (now - lastLog_ >= kLogInterval) {
+    std::cerr << "orthosim serve: accept failed " << failures_ << (failures_ == 1 ? " time" : " times")
+              << ": " << ec.message() << "; retrying\n";
+    failures_ = 0;
+    lastLog_ = now;
+  }
+  delay_ = delay_.count() == 0 ? kFirstDelay : std::min(kMaxDelay, 2 * delay_);
+  retry_.expires_after(delay_);
+  retry_.async_wait([self = shared_from_this()](const beast::error_code& waited) {
+    if (!waited) self->accept();
+  });
 }
 
 }  // namespace orthosim::net

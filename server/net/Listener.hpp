@@ -1,7 +1,11 @@
 #pragma once
-// Accepts TCP connections and starts an HttpSession on its own strand for each.
+// Accepts TCP connections and starts an HttpSession on its own strand for each. When accepting
+// fails (no file descriptors left, say) it waits before trying again, longer each time up to a
+// second, and logs at most once per interval how many attempts failed, instead of spinning.
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <chrono>
 #include <memory>
 
 #include "net/ConnectionContext.hpp"
@@ -23,9 +27,14 @@ class Listener : public std::enable_shared_from_this<Listener> {
  private:
   void accept();
   void onAccept(boost::system::error_code ec, boost::asio::ip::tcp::socket socket);
+  void backOff(const boost::system::error_code& ec);
 
   boost::asio::io_context& io_;
   boost::asio::ip::tcp::acceptor acceptor_;
+  boost::asio::steady_timer retry_;  // on the acceptor's strand
+  std::chrono::milliseconds delay_{0};
+  int failures_ = 0;  // since the last log line
+  std::chrono::steady_clock::time_point lastLog_{};
   std::shared_ptr<const ConnectionContext> context_;
 };
 

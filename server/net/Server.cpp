@@ -4,12 +4,15 @@
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/signal_set.hpp>
+#include <unistd.h>
+
 #include <algorithm>
 #include <csignal>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
+#include "net/BindRule.hpp"
 #include "net/Listener.hpp"
 #include "net/Router.hpp"
 
@@ -38,17 +41,26 @@ tcp::endpoint resolveEndpoint(boost::asio::io_context& io, const std::string& ho
   return results.begin()->endpoint();
 }
 
+// The names other machines may use for this one (its host name), when they can reach it at all.
+std::vector<std::string> machineNames(const boost::asio::ip::address& bound) {
+  if (bound.is_loopback()) return {};
+  char name[256] = {};
+  if (::gethostname(name, sizeof name - 1) != 0 || !*name) return {};
+  return {name};
+}
+
 }  // namespace
 
 Server::Server(const ServerOptions& options) : impl_(std::make_unique<Impl>(options)) {
   const tcp::endpoint endpoint = resolveEndpoint(impl_->io, options.host, options.port);
-  AccessOptions access = options.access;
-  access.anyHost = access.anyHost || endpoint.address().is_unspecified();
+  if (std::optional<std::string> why = bindRefusal(endpoint.address(), options.access.token, options.insecure))
+    throw std::runtime_error(*why);
   const std::string bound = endpoint.address().is_v6() ? "[" + endpoint.address().to_string() + "]"
                                                        : endpoint.address().to_string();
   auto context = std::make_shared<ConnectionContext>();
-  context->router = std::make_shared<const Router>(WebRoot(options.webDir), ApiRoutes(impl_->planning),
-                                                   AccessPolicy(access, bound));
+  context->router =
+      std::make_shared<const Router>(WebRoot(options.webDir), ApiRoutes(impl_->planning),
+                                     AccessPolicy(options.access, bound, machineNames(endpoint.address())));
   context->planning = &impl_->planning;
   context->limits = options.limits;
   context->webSocket = options.webSocket;

@@ -21,6 +21,7 @@ struct ServerOptions {
   HttpLimits limits;
   WebSocketLimits webSocket;
   AccessOptions access;             // token, allowed origins and hosts
+  bool insecure = false;            // serve off the loopback without a token (the operator typed --insecure)
   server::PlanningOptions planning;  // data folder, cases, workers
   std::string warmUpCase;           // built in the background at start (empty: none)
 };
@@ -29,7 +30,8 @@ class Server {
  public:
   // Binds the listening socket and installs the signal handlers, so that a SIGTERM that arrives
   // from here on stops the server cleanly. Throws std::runtime_error (bad host, port taken, no
-  // web folder) with a message naming the problem.
+  // web folder, a bind off the loopback without a token: net/BindRule.hpp) with a message naming
+  // the problem.
   explicit Server(const ServerOptions& options);
   ~Server();
 

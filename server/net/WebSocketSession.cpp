@@ -9,7 +9,7 @@ namespace websocket = beast::websocket;
 
 WebSocketSession::WebSocketSession(boost::asio::ip::tcp::socket&& socket, server::PlanningService& service,
                                    const WebSocketLimits& limits)
-    : ws_(std::move(socket)), service_(service), limits_(limits) {}
+    : ws_(std::move(socket)), service_(service), limits_(limits), unopened_(ws_.get_executor()) {}
 
 WebSocketSession::~WebSocketSession() {
   if (planning_) planning_->close();
@@ -18,7 +18,13 @@ WebSocketSession::~WebSocketSession() {
 
 void WebSocketSession::run(Request request) {
   beast::get_lowest_layer(ws_).expires_never();  // the WebSocket's own timeouts take over
-  ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+  // Slots are few: a client that does not finish the upgrade, or stops answering pings (a
+  // browser answers them by itself), gives its slot back.
+  websocket::stream_base::timeout timeouts{};
+  timeouts.handshake_timeout = limits_.handshakeTimeout;
+  timeouts.idle_timeout = limits_.idleTimeout;
+  timeouts.keep_alive_pings = true;
+  ws_.set_option(timeouts);
   ws_.set_option(websocket::stream_base::decorator(
       [](websocket::response_type& res) { res.set(http::field::server, "orthosim/" ORTHOSIM_VERSION); }));
   ws_.read_message_max(limits_.hardMessageBytes);
@@ -34,7 +40,20 @@ void WebSocketSession::onAccept(beast::error_code ec) {
       boost::asio::post(self->ws_.get_executor(), [self, bytes, binary] { self->queue(bytes, binary); });
   });
   planning_->start();
+  unopened_.expires_after(limits_.unopenedTimeout);
+  unopened_.async_wait([weak](const beast::error_code& waited) {
+    if (auto self = weak.lock(); self && !waited) self->closeIfNoCase();
+  });
   read();
+}
+
+void WebSocketSession::closeIfNoCase() {
+  if (closing_ || planning_->hasCase()) return;
+  closing_ = true;
+  planning_->close();
+  const std::string why = "no case opened within " + std::to_string(limits_.unopenedTimeout.count()) + " s";
+  ws_.async_close(websocket::close_reason(websocket::close_code::policy_error, why),
+                  [self = shared_from_this()](const beast::error_code&) {});
 }
 
 void WebSocketSession::read() {

@@ -4,6 +4,8 @@
 // message over the limit is read and discarded (the session then gets an error and carries on),
 // and a client that stops reading its replies is disconnected.
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <chrono>
 #include <boost/beast/core.hpp>
 #include <boost/beast/websocket.hpp>
 #include <deque>
@@ -20,6 +22,9 @@ struct WebSocketLimits {
   std::size_t messageBytes = 64 * 1024;        // larger client messages are refused (and skipped)
   std::size_t hardMessageBytes = 16u << 20;    // larger ones close the connection (1009)
   std::size_t outboxBytes = 64u << 20;         // replies a client may leave unread
+  std::chrono::seconds handshakeTimeout{10};   // to finish the upgrade (and the closing handshake)
+  std::chrono::seconds idleTimeout{120};       // silence, pings included, after which a client is gone
+  std::chrono::seconds unopenedTimeout{300};   // to open a case; a session that does not is closed
 };
 
 class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
@@ -34,6 +39,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
 
  private:
   void onAccept(boost::beast::error_code ec);
+  void closeIfNoCase();
   void read();
   void onRead(boost::beast::error_code ec, std::size_t bytes);
   // On the strand. A new frame replaces frames still waiting (not the one being written).
@@ -57,6 +63,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   std::size_t outboxBytes_ = 0;
   bool closing_ = false;
   std::shared_ptr<server::PlanningSession> planning_;
+  boost::asio::steady_timer unopened_;
 };
 
 }  // namespace orthosim::net

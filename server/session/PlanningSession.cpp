@@ -104,6 +104,11 @@ void PlanningSession::start() {
         nullptr);
 }
 
+bool PlanningSession::hasCase() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return open_ || !opening_.empty();
+}
+
 void PlanningSession::close() {
   {
     const std::lock_guard<std::mutex> lock(mutex_);

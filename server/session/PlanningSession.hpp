@@ -35,6 +35,8 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   void refuseBinary();
   // The connection is gone: cancel previews and this session's fine jobs. Idempotent.
   void close();
+  // A case is open or being opened (a session that never gets this far holds a slot for nothing).
+  bool hasCase() const;
 
  private:
   struct OpenCase;

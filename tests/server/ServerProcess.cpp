@@ -1,5 +1,6 @@
 #include "ServerProcess.hpp"
 
+#include <fcntl.h>
 #include <poll.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -16,7 +17,7 @@ namespace orthosim::test {
 
 std::string testDataDir() { return ORTHOSIM_TEST_DATA; }
 
-ServerProcess::ServerProcess(const std::vector<std::string>& extraArgs) {
+ServerProcess::ServerProcess(const std::vector<std::string>& extraArgs, const std::string& stderrPath) {
   std::vector<std::string> args{ORTHOSIM_CLI, "serve", "--port", "0"};
   // Unless a test chooses its own, every server shares one data folder in the build tree (the
   // phantom's meshes are then built once per build) and builds nothing at start.
@@ -31,7 +32,9 @@ ServerProcess::ServerProcess(const std::vector<std::string>& extraArgs) {
   if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);  // stderr stays the test's
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);  // stderr stays the test's unless redirected
+  if (!stderrPath.empty())
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, stderrPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addclose(&actions, fds[0]);
   posix_spawn_file_actions_addclose(&actions, fds[1]);
   const int spawned = posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ);

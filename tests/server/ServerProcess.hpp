@@ -17,12 +17,14 @@ class ServerProcess {
  public:
   // Starts ORTHOSIM_CLI serve --port 0 [--data testDataDir() --no-warm-up] <extraArgs>; throws std::runtime_error when the server
   // does not print "listening on http://HOST:PORT" within 30 s.
-  explicit ServerProcess(const std::vector<std::string>& extraArgs = {});
+  // `stderrPath`: the server's stderr goes to this file instead of the test's.
+  explicit ServerProcess(const std::vector<std::string>& extraArgs = {}, const std::string& stderrPath = "");
   ~ServerProcess();
   ServerProcess(const ServerProcess&) = delete;
   ServerProcess& operator=(const ServerProcess&) = delete;
 
   unsigned short port() const { return port_; }
+  pid_t pid() const { return pid_; }
   const std::string& listeningLine() const { return line_; }
 
   // Sends `signal` and waits up to `timeout` for the process to end. Returns its exit code

@@ -1,0 +1,218 @@
+// Server hardening (issue 17): no open door off the loopback, the page cannot be framed, idle
+// sessions give their slots back, and running out of file descriptors does not make the accept
+// loop spin. Each test failed before its fix.
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <boost/asio/connect.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "HttpTestClient.hpp"
+#include "ServerProcess.hpp"
+#include "WsTestClient.hpp"
+
+namespace orthosim {
+namespace {
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr
+};
+
+CommandResult runCli(const std::string& args) {
+  CommandResult r;
+  FILE* pipe = ::popen(("env -u ORTHOSIM_TOKEN " ORTHOSIM_CLI " " + args + " 2>&1").c_str(), "r");
+  if (!pipe) return r;
+  char chunk[512];
+  while (std::fgets(chunk, sizeof chunk, pipe)) r.output += chunk;
+  const int status = ::pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+int status(unsigned short port, const std::string& target, const std::string& headers) {
+  const auto replies =
+      test::httpRaw(port, "GET " + target + " HTTP/1.1\r\n" + headers + "Connection: close\r\n\r\n");
+  return replies.empty() ? 0 : replies[0].result_int();
+}
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::path(test::testDataDir()) / "hardening" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(ServerHardening, EveryInterfaceWithoutATokenDoesNotStart) {
+  const CommandResult r =
+      runCli("serve --host 0.0.0.0 --port 0 --no-warm-up --data " + test::testDataDir());
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("every network interface"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--token"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("listening on"), std::string::npos) << r.output;
+}
+
+// The attack of the issue: bound to 0.0.0.0, a page of attacker.example (resolving to this
+// machine) opened /ws with a matching Origin and read the plans. Now its Host is refused.
+TEST(ServerHardening, EveryInterfaceRefusesForeignHostsEvenWhenInsecure) {
+  test::ServerProcess server({"--host", "0.0.0.0", "--insecure"});
+  const std::string port = std::to_string(server.port());
+  EXPECT_EQ(status(server.port(), "/api/health", "Host: attacker.example:" + port + "\r\n"), 403);
+  EXPECT_EQ(test::upgradeStatus(server.port(), "/ws",
+                                {{"Host", "attacker.example:" + port}, {"Origin", "http://attacker.example:" + port}}),
+            403);
+  EXPECT_EQ(status(server.port(), "/api/health", "Host: 127.0.0.1:" + port + "\r\n"), 200);
+  char name[256] = {};
+  ASSERT_EQ(::gethostname(name, sizeof name - 1), 0);
+  EXPECT_EQ(status(server.port(), "/api/health", "Host: " + std::string(name) + ":" + port + "\r\n"), 200)
+      << "this machine's own name";
+}
+
+TEST(ServerHardening, TokenFileIsMadeOnceAndThenRequired) {
+  const fs::path token = scratch("token-file") / "token";
+  std::string written;
+  {
+    test::ServerProcess server({"--host", "0.0.0.0", "--token-file", token.string()});
+    ASSERT_TRUE(fs::exists(token));
+    EXPECT_EQ(fs::status(token).permissions() & (fs::perms::group_all | fs::perms::others_all), fs::perms::none)
+        << "only its owner may read the token";
+    written = readFile(token);
+    ASSERT_GE(written.size(), 33u);  // 64 hex digits and a newline
+    written.pop_back();
+    const std::string host = "Host: 127.0.0.1\r\n";
+    EXPECT_EQ(status(server.port(), "/api/health", host), 401);
+    EXPECT_EQ(status(server.port(), "/api/health?token=" + written, host), 200);
+  }
+  test::ServerProcess again({"--host", "0.0.0.0", "--token-file", token.string()});
+  EXPECT_EQ(status(again.port(), "/api/health?token=" + written, "Host: 127.0.0.1\r\n"), 200) << "the same token";
+}
+
+TEST(ServerHardening, ThePageCannotBeFramed) {
+  test::ServerProcess server;
+  for (const char* target : {"/", "/index.html", "/api/health", "/no-such-file"}) {
+    const auto replies = test::httpRaw(server.port(), std::string("GET ") + target +
+                                                          " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
+    ASSERT_FALSE(replies.empty()) << target;
+    EXPECT_EQ(replies[0][boost::beast::http::field::x_frame_options], "DENY") << target;
+    EXPECT_EQ(replies[0]["Content-Security-Policy"], "frame-ancestors 'none'") << target;
+  }
+}
+
+// Clients that upgrade and then never open a case (or never read) held every slot for good.
+TEST(ServerHardening, SessionsThatOpenNoCaseGiveTheirSlotBack) {
+  test::ServerProcess server({"--max-sessions", "1", "--unopened-timeout", "1"});
+  auto idle = std::make_unique<test::WsTestClient>(server.port());
+  EXPECT_EQ(test::upgradeStatus(server.port(), "/ws"), 503) << "the one slot is taken";
+  int got = 0;
+  for (const auto deadline = std::chrono::steady_clock::now() + 15s;
+       got != 101 && std::chrono::steady_clock::now() < deadline;) {
+    std::this_thread::sleep_for(200ms);
+    got = test::upgradeStatus(server.port(), "/ws");
+  }
+  EXPECT_EQ(got, 101) << "the idle session was closed and its slot came back";
+  // The idle client was told why.
+  bool closed = false;
+  try {
+    idle->next(5s);
+  } catch (const std::exception& e) {
+    closed = true;
+  }
+  EXPECT_TRUE(closed);
+}
+
+TEST(ServerHardening, OpeningACaseKeepsTheSession) {
+  test::ServerProcess server({"--max-sessions", "1", "--unopened-timeout", "1"});
+  test::WsTestClient ws(server.port());
+  ws.request({{"type", "open"}, {"case", "phantom-0"}});
+  ws.waitFor("opened", 300s);
+  std::this_thread::sleep_for(1500ms);
+  EXPECT_EQ(ws.request({{"type", "list_cases"}})["type"], "cases") << "still served";
+}
+
+long cpuTicks(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::istringstream fields(all.substr(all.rfind(')') + 2));
+  std::string f;
+  long utime = 0, stime = 0;
+  for (int i = 3; i <= 15 && fields >> f; ++i) {
+    if (i == 14) utime = std::stol(f);
+    if (i == 15) stime = std::stol(f);
+  }
+  return utime + stime;
+}
+
+int countLines(const fs::path& file, const std::string& needle) {
+  std::ifstream in(file);
+  int n = 0;
+  for (std::string line; std::getline(in, line);) n += line.find(needle) != std::string::npos;
+  return n;
+}
+
+// With its descriptors used up, the server used to retry accept() at once, forever: a core at
+// 100% and millions of log lines. Now it backs off, logs once per interval, and answers again
+// as soon as descriptors come back.
+TEST(ServerHardening, RunningOutOfDescriptorsDoesNotSpin) {
+  const fs::path log = scratch("descriptors") / "stderr.txt";
+  test::ServerProcess server({}, log.string());
+  rlimit normal{};
+  ASSERT_EQ(::prlimit(server.pid(), RLIMIT_NOFILE, nullptr, &normal), 0);
+  const rlimit few{48, normal.rlim_max};  // the soft limit: the server's own calls fail with EMFILE
+  ASSERT_EQ(::prlimit(server.pid(), RLIMIT_NOFILE, &few, nullptr), 0);
+
+  boost::asio::io_context io;
+  std::vector<std::unique_ptr<boost::asio::ip::tcp::socket>> held;
+  const boost::asio::ip::tcp::endpoint endpoint(boost::asio::ip::make_address("127.0.0.1"), server.port());
+  for (int i = 0; i < 80; ++i) {
+    auto s = std::make_unique<boost::asio::ip::tcp::socket>(io);
+    boost::system::error_code ec;
+    s->connect(endpoint, ec);  // the kernel completes it; the server may not accept it
+    if (!ec) held.push_back(std::move(s));
+  }
+  std::this_thread::sleep_for(500ms);
+  const long before = cpuTicks(server.pid());
+  std::this_thread::sleep_for(2s);
+  const long used = cpuTicks(server.pid()) - before;
+  const long perSecond = ::sysconf(_SC_CLK_TCK);
+  EXPECT_LT(used, perSecond / 4) << "CPU ticks in 2 s with descriptors exhausted (spinning uses ~" << 2 * perSecond
+                                 << ")";
+  EXPECT_LE(countLines(log, "accept failed"), 2);
+  EXPECT_GE(countLines(log, "accept failed"), 1) << "the exhaustion is logged";
+
+  held.clear();
+  ASSERT_EQ(::prlimit(server.pid(), RLIMIT_NOFILE, &normal, nullptr), 0);
+  int health = 0;
+  for (const auto deadline = std::chrono::steady_clock::now() + 10s;
+       health != 200 && std::chrono::steady_clock::now() < deadline;) {
+    try {
+      health = test::httpGet(server.port(), "/api/health").result_int();
+    } catch (const std::exception&) {
+      std::this_thread::sleep_for(100ms);
+    }
+  }
+  EXPECT_EQ(health, 200);
+}
+
+}  // namespace
+}  // namespace orthosim
