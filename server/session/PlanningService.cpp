@@ -7,6 +7,7 @@ namespace orthosim::server {
 
 PlanningService::PlanningService(PlanningOptions options)
     : options_(std::move(options)),
+      lock_(options_.dataDir),
       cases_(options_.cases, options_.dataDir),
       fineJobs_(options_.fineWorkers, options_.fineQueue),
       plans_(options_.dataDir / "plans"),

@@ -12,6 +12,7 @@
 
 #include "cases/CaseLibrary.hpp"
 #include "session/AnatomicalPose.hpp"
+#include "session/DataFolderLock.hpp"
 #include "session/ExportStore.hpp"
 #include "session/JobQueue.hpp"
 #include "session/PlanStore.hpp"
@@ -30,6 +31,7 @@ struct PlanningOptions {
 
 class PlanningService {
  public:
+  // Throws std::runtime_error when another server holds the data folder (DataFolderLock).
   explicit PlanningService(PlanningOptions options);
   ~PlanningService();
 
@@ -56,6 +58,7 @@ class PlanningService {
 
  private:
   PlanningOptions options_;
+  DataFolderLock lock_;  // before anything that writes into the data folder
   CaseLibrary cases_;
   JobQueue fineJobs_;
   PlanStore plans_;

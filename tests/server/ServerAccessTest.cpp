@@ -16,6 +16,14 @@ namespace orthosim {
 namespace {
 using nlohmann::json;
 
+// A second server at the same time needs a data folder of its own (one server per folder).
+std::vector<std::string> ownDataFolder(const std::string& name, std::vector<std::string> args) {
+  const std::string dir = test::testDataDir() + "/access-" + name;
+  std::filesystem::create_directories(dir);
+  args.insert(args.end(), {"--data", dir, "--no-warm-up"});
+  return args;
+}
+
 std::string get(unsigned short port, const std::string& target, const std::string& headers) {
   const auto replies =
       test::httpRaw(port, "GET " + target + " HTTP/1.1\r\n" + headers + "Connection: close\r\n\r\n");
@@ -33,7 +41,7 @@ TEST(ServerAccess, ForeignHostNamesAreRefused) {
   EXPECT_EQ(get(server.port(), "/index.html", "Host: evil.example\r\n").substr(0, 3), "403");
   EXPECT_EQ(test::upgradeStatus(server.port(), "/ws", {{"Host", "evil.example"}}), 403);
 
-  test::ServerProcess allowing({"--allow-host", "planner.local"});
+  test::ServerProcess allowing(ownDataFolder("hosts", {"--allow-host", "planner.local"}));
   EXPECT_EQ(get(allowing.port(), "/api/health", "Host: planner.local:9000\r\n").substr(0, 3), "200");
 }
 
@@ -46,7 +54,7 @@ TEST(ServerAccess, WebSocketFromAForeignOriginIsRefusedUnlessAllowed) {
   EXPECT_EQ(test::upgradeStatus(server.port(), "/elsewhere"), 404);
   EXPECT_EQ(get(server.port(), "/ws", "Host: 127.0.0.1\r\n").substr(0, 3), "426") << "plain GET on /ws";
 
-  test::ServerProcess allowing({"--allow-origin", "http://planner.example:3000"});
+  test::ServerProcess allowing(ownDataFolder("origins", {"--allow-origin", "http://planner.example:3000"}));
   EXPECT_EQ(test::upgradeStatus(allowing.port(), "/ws", {{"Origin", "http://planner.example:3000"}}), 101);
   EXPECT_EQ(test::upgradeStatus(allowing.port(), "/ws", {{"Origin", "http://evil.example"}}), 403);
 }

@@ -11,6 +11,7 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -148,6 +149,22 @@ TEST(ServerHardening, OpeningACaseKeepsTheSession) {
   ws.waitFor("opened", 300s);
   std::this_thread::sleep_for(1500ms);
   EXPECT_EQ(ws.request({{"type", "list_cases"}})["type"], "cases") << "still served";
+}
+
+// Two servers on one data folder overwrote each other's plans without a word; the second one
+// is now refused, and the folder is free again once the first ends, even by kill -9.
+TEST(ServerHardening, TwoServersCannotShareADataFolder) {
+  const fs::path data = scratch("shared-data");
+  const std::vector<std::string> args{"--data", data.string(), "--no-warm-up"};
+  auto first = std::make_unique<test::ServerProcess>(args);
+  const CommandResult second = runCli("serve --port 0 --no-warm-up --data " + data.string());
+  EXPECT_EQ(second.exitCode, 1) << second.output;
+  EXPECT_NE(second.output.find("in use by another orthosim serve (pid "), std::string::npos) << second.output;
+  EXPECT_EQ(second.output.find("listening on"), std::string::npos) << second.output;
+  EXPECT_EQ(first->stop(SIGKILL, 5s), 128 + SIGKILL);
+  first.reset();
+  test::ServerProcess third(args);
+  EXPECT_EQ(test::httpGet(third.port(), "/api/health").result_int(), 200);
 }
 
 long cpuTicks(pid_t pid) {
