@@ -1,5 +1,7 @@
 #include "mesh/SurfaceImport.hpp"
 
+#include "mesh/CheckedFileSystem.hpp"
+
 #include <array>
 #include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
@@ -271,21 +273,29 @@ std::unique_ptr<aiScene> exportScene(const SurfaceMesh& mesh, Format format, con
 
 }  // namespace
 
+namespace {
+
+// Writes through a CheckedFileSystem: a full disk is an error naming the file and the reason.
+void writeScene(const aiScene& scene, const std::string& formatId, const std::string& path) {
+  auto failure = std::make_shared<std::string>();
+  Assimp::Exporter exporter;
+  exporter.SetIOHandler(new CheckedFileSystem(failure));  // the exporter owns it
+  const aiReturn result = exporter.Export(&scene, formatId, path);
+  if (!failure->empty()) throw std::runtime_error("cannot write " + *failure);
+  if (result != AI_SUCCESS) throw std::runtime_error(path + ": cannot write: " + exporter.GetErrorString());
+}
+
+}  // namespace
+
 void exportSurface(const SurfaceMesh& mesh, const std::string& path, SurfaceEncoding encoding) {
   const Format format = formatOf(path);
-  const std::unique_ptr<aiScene> scene = exportScene(mesh, format, path);
-  Assimp::Exporter exporter;
-  if (exporter.Export(scene.get(), exporterId(format, encoding), path) != AI_SUCCESS)
-    throw std::runtime_error(path + ": cannot write: " + exporter.GetErrorString());
+  writeScene(*exportScene(mesh, format, path), exporterId(format, encoding), path);
 }
 
 void exportSurface(const SurfaceMesh& mesh, const Eigen::Matrix3Xf& vertexColours, const std::string& path,
                    SurfaceEncoding encoding) {
   const Format format = formatOf(path);
-  const std::unique_ptr<aiScene> scene = exportScene(mesh, format, path, &vertexColours);
-  Assimp::Exporter exporter;
-  if (exporter.Export(scene.get(), exporterId(format, encoding, true), path) != AI_SUCCESS)
-    throw std::runtime_error(path + ": cannot write: " + exporter.GetErrorString());
+  writeScene(*exportScene(mesh, format, path, &vertexColours), exporterId(format, encoding, true), path);
 }
 
 std::string exportSurfaceBytes(const SurfaceMesh& mesh, const std::string& extension, SurfaceEncoding encoding) {

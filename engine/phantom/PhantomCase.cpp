@@ -1,5 +1,7 @@
 #include "phantom/PhantomCase.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -36,7 +38,8 @@ std::string writePhantomCase(int variant, const std::string& dir) {
   {
     std::ofstream out(tmp);
     out << phantomCaseJson(phantom).dump(2) << "\n";
-    if (!out.flush()) throw std::runtime_error(tmp.string() + ": cannot write the phantom case");
+    out.close();
+    if (!out) throw std::runtime_error(tmp.string() + ": cannot write the phantom case: " + std::strerror(errno));
   }
   std::filesystem::rename(tmp, path);
   return path.string();

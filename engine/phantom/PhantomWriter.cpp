@@ -1,6 +1,8 @@
 // writePhantom: the phantom's surfaces, texture and landmarks as files.
 #include <turbojpeg.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -26,7 +28,8 @@ void writeJpeg(const RgbImage& img, const std::string& path) {
   std::unique_ptr<unsigned char, void (*)(unsigned char*)> owned(buf, tjFree);
   std::ofstream out(path, std::ios::binary);
   out.write(reinterpret_cast<const char*>(buf), static_cast<std::streamsize>(size));
-  if (!out) throw std::runtime_error(path + ": cannot write the file");
+  out.close();
+  if (!out) throw std::runtime_error(path + ": cannot write the file: " + std::strerror(errno));
 }
 
 void writeLandmarks(const Phantom& p, const std::string& path) {
@@ -41,7 +44,8 @@ void writeLandmarks(const Phantom& p, const std::string& path) {
   j["variant"] = p.variant.name;
   std::ofstream out(path);
   out << j.dump(2) << "\n";
-  if (!out) throw std::runtime_error(path + ": cannot write the file");
+  out.close();
+  if (!out) throw std::runtime_error(path + ": cannot write the file: " + std::strerror(errno));
 }
 
 }  // namespace

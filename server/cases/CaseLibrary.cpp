@@ -29,7 +29,14 @@ std::string CaseLibrary::caseFile(const CaseEntry& entry) {
   // the first rename wins (the phantom is deterministic, so either is the same case).
   const fs::path tmp = dataDir_ / "cases" / (entry.id + ".writing-" + std::to_string(::getpid()));
   fs::remove_all(tmp);
-  writePhantomCase(entry.phantomVariant, tmp.string());
+  try {
+    writePhantomCase(entry.phantomVariant, tmp.string());
+  } catch (const std::exception& e) {
+    std::error_code ignored;
+    fs::remove_all(tmp, ignored);  // nothing half-written stays behind
+    throw std::runtime_error("cannot write the case " + entry.id + " into " + (dataDir_ / "cases").string() + ": " +
+                             e.what());
+  }
   std::error_code ec;
   fs::rename(tmp, dir, ec);  // a folder with case.json is always complete
   if (ec) {

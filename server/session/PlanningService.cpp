@@ -3,6 +3,8 @@
 #include <boost/asio/post.hpp>
 #include <iostream>
 
+#include "session/DataFolderLeftovers.hpp"
+
 namespace orthosim::server {
 
 PlanningService::PlanningService(PlanningOptions options)
@@ -11,7 +13,10 @@ PlanningService::PlanningService(PlanningOptions options)
       cases_(options_.cases, options_.dataDir),
       fineJobs_(options_.fineWorkers, options_.fineQueue),
       plans_(options_.dataDir / "plans"),
-      previewPool_(static_cast<std::size_t>(std::max(1, options_.previewThreads))) {}
+      previewPool_(static_cast<std::size_t>(std::max(1, options_.previewThreads))) {
+  for (const std::string& leftover : removeLeftovers(options_.dataDir))
+    std::cerr << "orthosim serve: removed " << leftover << ", left by an interrupted write\n";
+}
 
 PlanningService::~PlanningService() { shutdown(); }
 

@@ -525,5 +525,25 @@ TEST_F(SurfaceImportTest, NoTriangles) {
                        "nothing: no triangles"));
 }
 
+// Assimp's own file streams ignore failed writes: a full disk left a truncated surface that
+// looked written. /dev/full fails every write with ENOSPC, like a full disk.
+TEST(SurfaceExport, AFullDiskIsAnErrorWithItsReason) {
+  const fs::path dir = fs::temp_directory_path() / ("orthosim_full_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const char* name : {"skin.stl", "skin.obj", "skin.ply"}) {
+    const fs::path link = dir / name;
+    fs::remove(link);
+    fs::create_symlink("/dev/full", link);
+    try {
+      exportSurface(makeIcosphere(10, 2, Eigen::Vector3d::Zero()), link.string());
+      ADD_FAILURE() << name << ": written to a full disk without an error";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("No space left on device"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace orthosim

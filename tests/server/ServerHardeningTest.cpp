@@ -23,6 +23,7 @@
 #include "HttpTestClient.hpp"
 #include "ServerProcess.hpp"
 #include "WsTestClient.hpp"
+#include <nlohmann/json.hpp>
 
 namespace orthosim {
 namespace {
@@ -167,6 +168,58 @@ TEST(ServerHardening, TwoServersCannotShareADataFolder) {
   EXPECT_EQ(test::httpGet(third.port(), "/api/health").result_int(), 200);
 }
 
+int countLines(const fs::path& file, const std::string& needle) {
+  std::ifstream in(file);
+  int n = 0;
+  for (std::string line; std::getline(in, line);) n += line.find(needle) != std::string::npos;
+  return n;
+}
+
+// A server killed mid-save left plans/<case>/<name>.json.tmp<pid>-<n>, and a failed case write
+// left cases/<id>.writing-<pid>/, for good. The next server to hold the folder removes them and
+// nothing else.
+TEST(ServerHardening, LeftoversOfInterruptedWritesAreRemovedAtStart) {
+  const fs::path data = scratch("leftovers");
+  fs::create_directories(data / "plans" / "phantom-0");
+  fs::create_directories(data / "cases" / "phantom-0.writing-4242");
+  std::ofstream(data / "cases" / "phantom-0.writing-4242" / "skin.obj") << "v 0 0 0\n";
+  std::ofstream(data / "plans" / "phantom-0" / "setback.json.tmp4242-0") << "{\"poses\":";
+  std::ofstream(data / "plans" / "phantom-0" / "setback.json") << "{}\n";
+  std::ofstream(data / "plans" / "phantom-0" / "notes.txt") << "kept\n";
+  const fs::path log = data.parent_path() / "leftovers-stderr.txt";
+  test::ServerProcess server({"--data", data.string(), "--no-warm-up"}, log.string());
+  EXPECT_FALSE(fs::exists(data / "cases" / "phantom-0.writing-4242"));
+  EXPECT_FALSE(fs::exists(data / "plans" / "phantom-0" / "setback.json.tmp4242-0"));
+  EXPECT_TRUE(fs::exists(data / "plans" / "phantom-0" / "setback.json")) << "a saved plan stays";
+  EXPECT_TRUE(fs::exists(data / "plans" / "phantom-0" / "notes.txt"));
+  EXPECT_EQ(countLines(log, "left by an interrupted write"), 2);
+}
+
+// A full disk while the phantom is written: the open fails with the system's reason, and no
+// half-written case folder stays behind. Needs a small tmpfs (mount works as root).
+TEST(ServerHardening, AFullDiskFailsTheCaseWriteWithItsReason) {
+  const fs::path data = scratch("full-disk");
+  if (::system(("mount -t tmpfs -o size=600k tmpfs " + data.string() + " 2>/dev/null").c_str()) != 0)
+    GTEST_SKIP() << "cannot mount a small tmpfs here (not root): the full-disk path is not exercised";
+  struct Unmount {
+    fs::path dir;
+    ~Unmount() { (void)::system(("umount " + dir.string()).c_str()); }
+  } unmount{data};
+  {
+    test::ServerProcess server({"--data", data.string(), "--no-warm-up"});
+    test::WsTestClient ws(server.port());
+    const nlohmann::json reply = ws.request({{"type", "open"}, {"case", "phantom-0"}}, 120s);
+    nlohmann::json error = reply;
+    if (reply["type"] != "error") error = ws.waitFor("error", 120s);
+    const std::string message = error.dump();
+    EXPECT_NE(message.find("No space left on device"), std::string::npos) << message;
+    EXPECT_NE(message.find("cannot write the case phantom-0"), std::string::npos) << message;
+    for (const fs::directory_entry& e : fs::directory_iterator(data / "cases"))
+      EXPECT_EQ(e.path().filename().string().find(".writing-"), std::string::npos) << e.path();
+    EXPECT_FALSE(fs::exists(data / "cases" / "phantom-0" / "case.json"));
+  }
+}
+
 long cpuTicks(pid_t pid) {
   std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
   std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -180,12 +233,6 @@ long cpuTicks(pid_t pid) {
   return utime + stime;
 }
 
-int countLines(const fs::path& file, const std::string& needle) {
-  std::ifstream in(file);
-  int n = 0;
-  for (std::string line; std::getline(in, line);) n += line.find(needle) != std::string::npos;
-  return n;
-}
 
 // With its descriptors used up, the server used to retry accept() at once, forever: a core at
 // 100% and millions of log lines. Now it backs off, logs once per interval, and answers again

@@ -1,0 +1,27 @@
+#include "session/DataFolderLeftovers.hpp"
+
+namespace orthosim::server {
+namespace fs = std::filesystem;
+namespace {
+
+bool isTemporaryPlan(const fs::path& p) { return p.filename().string().find(".json.tmp") != std::string::npos; }
+bool isUnfinishedCase(const fs::path& p) { return p.filename().string().find(".writing-") != std::string::npos; }
+
+}  // namespace
+
+std::vector<std::string> removeLeftovers(const fs::path& dataDir) {
+  std::error_code ec;
+  std::vector<fs::path> found;  // listed first, removed after: no removal under a running iterator
+  if (fs::is_directory(dataDir / "cases", ec))
+    for (const fs::directory_entry& e : fs::directory_iterator(dataDir / "cases", ec))
+      if (isUnfinishedCase(e.path())) found.push_back(e.path());
+  if (fs::is_directory(dataDir / "plans", ec))
+    for (const fs::directory_entry& e : fs::recursive_directory_iterator(dataDir / "plans", ec))
+      if (e.is_regular_file(ec) && isTemporaryPlan(e.path())) found.push_back(e.path());
+  std::vector<std::string> removed;
+  for (const fs::path& p : found)
+    if (fs::remove_all(p, ec) > 0 && !ec) removed.push_back(fs::relative(p, dataDir, ec).string());
+  return removed;
+}
+
+}  // namespace orthosim::server
