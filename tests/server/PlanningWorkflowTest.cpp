@@ -10,6 +10,7 @@
 
 #include "HttpTestClient.hpp"
 #include "ServerProcess.hpp"
+#include "TestWait.hpp"
 #include "WsTestClient.hpp"
 
 namespace orthosim {
@@ -78,8 +79,10 @@ TEST(PlanningWorkflow, CoarsePreviewThenFineConfirmThenExport) {
   double fraction = -1;
   std::vector<std::string> phases;
   json done;
+  const auto deadline = std::chrono::steady_clock::now() + 300s;  // the whole job, every message of it
   for (;;) {
-    const json m = ws.waitFor([](const json& j) { return j.value("type", "").rfind("job_", 0) == 0; }, 300s);
+    const json m =
+        ws.waitFor([](const json& j) { return j.value("type", "").rfind("job_", 0) == 0; }, test::timeLeft(deadline));
     ASSERT_EQ(m["job"], job);
     if (m["type"] == "job_progress") {
       EXPECT_GE(m["fraction"].get<double>(), fraction);
