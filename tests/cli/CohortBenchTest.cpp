@@ -13,6 +13,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "TestData.hpp"
 #include "render/PngFile.hpp"
 
 namespace fs = std::filesystem;
@@ -120,7 +121,9 @@ TEST_F(CohortBench, TwoPatientsTablePlotAndRatios) {
 // without ../shared.
 TEST_F(CohortBench, RealFaceRatiosAreComputedAndFlagged) {
   const fs::path face = fs::path(ORTHOSIM_SHARED_DIR) / "cases" / "artisynth_face";
-  if (!fs::exists(face / "face_volume.node")) GTEST_SKIP() << "no shared data at " << face;
+  SKIP_WITHOUT_SHARED_DATA(face / "face_volume.node", face / "face_volume.ele", face / "face_surface.obj",
+                           face / "maxilla.obj", face / "fixed_to_skull.txt", face / "deep_surface.txt",
+                           face / "mandible.obj", face / "attached_to_mandible.txt");
   const std::string json = (dir_ / "face.json").string();
   ASSERT_EQ(run("--patients 0 --face " + face.string() + " --json " + json), 0) << read("out.txt") << read("err.txt");
   std::cout << read("out.txt");

@@ -6,10 +6,20 @@
 //
 // Block scenes (engine/scene/BlockScene.hpp) where anatomy does not matter; the coarse phantom
 // (built once, cached under the build tree) where it does.
+//
+// Each case pins today's outcome, so that a solver that gives up still fails the suite: converged
+// where it converges today, within an iteration budget of about twice today's count (the comments
+// give today's counts, measured on 2026-11-25; the margin leaves room for changes to the
+// convergence criteria), and for the 60 mm plan, which is refused, a load fraction above a stated
+// bound. Checked by mutation (2026-11-25, not committed): with Newton::run
+// (engine/solver/NewtonSolver.cpp) made to refuse every substep, by
+// `return fail(rep, "mutation: refuse every substep");` right after `SubstepReport rep;`, all 12
+// tests of this suite fail: the 3 HardBlock tests, all 7 HardPhantom tests and both
+// NearlyIncompressible/HardPoisson tests. Before the outcomes were pinned, 6 of the 7 HardPhantom
+// tests (all but IdentityPlanIsTheExactRest) passed under the same mutation.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -44,6 +54,13 @@ void report(const std::string& name, const SolveResult& r) {
   if (!r.converged) std::cout << ": " << r.error;
   for (const std::string& w : r.warnings) std::cout << "\n  warning: " << w;
   std::cout << std::endl;
+}
+
+// Today's outcome pinned: converged, in at most `budget` iterations (as allIterations counts them).
+void expectConvergedWithin(const SolveResult& r, int budget) {
+  EXPECT_TRUE(r.converged) << r.error;
+  EXPECT_EQ(r.loadFraction, 1.0);
+  EXPECT_LE(allIterations(r), budget) << "over the iteration budget";
 }
 
 // What every hard case must satisfy, converged or not: finite positions and poses, no inverted
@@ -144,6 +161,10 @@ TEST(HardBlock, PlanForwardThenBackReturnsToRest) {
     report("forward" + tol, forward.result);
     report("back" + tol, r);
     expectValid(model, forward.result.state, back, r);
+    // Today 4 iterations each way with the default tolerances, 10 with the tight ones.
+    const int budget = tight ? 20 : 8;
+    expectConvergedWithin(forward.result, budget);
+    expectConvergedWithin(r, budget);
     ASSERT_TRUE(r.converged) << r.error;
     const double d = maxDistance(r.state.x, s.mesh.rest);
     std::cout << "forward then back" << tol << ": largest distance to rest " << d << " mm (step tolerance "
@@ -163,7 +184,8 @@ TEST_P(HardPoisson, ReferencePlanConvergesOrFailsCleanly) {
   const HardRun run = solveFromRest(model, s.plan, s.solver);
   report("nu = " + std::to_string(GetParam()).substr(0, 5) + " (block)", run.result);
   expectValid(model, run.start, run.targets, run.result);
-  EXPECT_TRUE(run.result.converged) << run.result.error;
+  // Today 7 iterations with nu = 0.49, 9 with nu = 0.499.
+  expectConvergedWithin(run.result, GetParam() < 0.495 ? 14 : 18);
 }
 
 INSTANTIATE_TEST_SUITE_P(NearlyIncompressible, HardPoisson, ::testing::Values(0.49, 0.499));
@@ -230,7 +252,7 @@ TEST(HardBlock, SliverTetrahedraConvergeOrFailCleanly) {
   const HardRun run = solveFromRest(model, s.plan, s.solver);
   report("sliver tetrahedra (block)", run.result);
   expectValid(model, run.start, run.targets, run.result);
-  EXPECT_TRUE(run.result.converged) << run.result.error;
+  expectConvergedWithin(run.result, 16);  // today 8 iterations
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -304,7 +326,8 @@ TEST_F(HardPhantom, AdvancementOf15mmWithTenDegreesOfPitch) {
   m.translation = 15.0 * spec().frame.anterior;
   m.rotation = 10.0 * kDeg * spec().frame.right;
   m.center = landmark("upper_incisor_tip");
-  solve("15 mm advancement + 10 deg pitch (phantom, contact)", coarse().scene, {{"maxilla", m}});
+  const HardRun run = solve("15 mm advancement + 10 deg pitch (phantom, contact)", coarse().scene, {{"maxilla", m}});
+  expectConvergedWithin(run.result, 22);  // today 11 iterations in 3 substeps
 }
 
 // Three-piece maxilla: the lateral segments each 3 mm outward, 6 mm apart; the anterior stays.
@@ -313,14 +336,17 @@ TEST_F(HardPhantom, SegmentedMaxillaMovedSixMillimetresApart) {
   FragmentMotion left, right;
   left.translation = -3.0 * spec().frame.right;
   right.translation = 3.0 * spec().frame.right;
-  solve("segmented maxilla, 6 mm apart (phantom, contact)", scene, {{"maxilla_left", left}, {"maxilla_right", right}});
+  const HardRun run = solve("segmented maxilla, 6 mm apart (phantom, contact)", scene,
+                            {{"maxilla_left", left}, {"maxilla_right", right}});
+  expectConvergedWithin(run.result, 12);  // today 6 iterations in 1 substep
 }
 
 TEST_F(HardPhantom, SetbackOf10mmWithLipsTeethContact) {
   ASSERT_FALSE(coarse().scene.contacts.empty());
   FragmentMotion m;
   m.translation = -10.0 * spec().frame.anterior;
-  solve("10 mm setback with contact (phantom)", coarse().scene, {{"mandible", m}});
+  const HardRun run = solve("10 mm setback with contact (phantom)", coarse().scene, {{"mandible", m}});
+  expectConvergedWithin(run.result, 72);  // today 36 iterations in 3 substeps
 }
 
 // Maxilla down and mandible up by `mm` each: the dentitions pass through each other (bones do not
@@ -337,21 +363,29 @@ std::map<std::string, FragmentMotion> intoEachOther(const AnatomicalFrame& frame
 TEST_F(HardPhantom, FragmentsMovedIntoEachOther) {
   Scene scene = coarse().scene;
   scene.contacts.clear();
-  solve("fragments moved into each other, 8 mm each (phantom)", scene, intoEachOther(spec().frame, 8.0));
+  const HardRun run =
+      solve("fragments moved into each other, 8 mm each (phantom)", scene, intoEachOther(spec().frame, 8.0));
+  expectConvergedWithin(run.result, 44);  // today 22 iterations in 9 substeps
 }
 
 // 5 mm each (10 mm of overlap) with the lips-teeth contact.
 TEST_F(HardPhantom, FragmentsMovedIntoEachOtherWithContact) {
-  solve("fragments moved into each other, 5 mm each (phantom, contact)", coarse().scene,
-        intoEachOther(spec().frame, 5.0));
+  const HardRun run = solve("fragments moved into each other, 5 mm each (phantom, contact)", coarse().scene,
+                           intoEachOther(spec().frame, 5.0));
+  expectConvergedWithin(run.result, 16);  // today 8 iterations in 1 substep
 }
 
+// Refused today: at load fraction 0.3967 (24 mm) moving the boundary any further inverts
+// elements; 58 iterations in 29 substeps, the last 2^-12 of the plan long. Pinned: refused, not
+// before 0.35 of the plan, within 116 iterations (an iteration budget instead of a time limit:
+// the refusal comes in bounded work, and the ctest timeout catches a hang).
 TEST_F(HardPhantom, FragmentMoved60mmAway) {
   FragmentMotion m;
   m.translation = 60.0 * spec().frame.anterior;
-  const auto t0 = std::chrono::steady_clock::now();
-  solve("maxilla 60 mm forward (phantom, contact)", coarse().scene, {{"maxilla", m}});
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 120.0);
+  const HardRun run = solve("maxilla 60 mm forward (phantom, contact)", coarse().scene, {{"maxilla", m}});
+  EXPECT_FALSE(run.result.converged);
+  EXPECT_GT(run.result.loadFraction, 0.35);
+  EXPECT_LE(allIterations(run.result), 116) << "over the iteration budget";
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "TestData.hpp"
 #include "mesh/BoxMesh.hpp"
 #include "mesh/PointEmbedding.hpp"
 #include "mesh/TetgenIO.hpp"
@@ -183,7 +184,8 @@ TEST(PointEmbedding, TwentyThousandPointsInTwentyThousandTets) {
 
 TEST(PointEmbedding, RealFaceSurfaceVerticesEmbedOntoTheirNodes) {
   const fs::path dir = fs::path(ORTHOSIM_SHARED_DIR) / "cases" / "artisynth_face";
-  if (!fs::exists(dir / "face_surface.obj")) GTEST_SKIP() << "no shared data at " << dir;
+  SKIP_WITHOUT_SHARED_DATA(dir / "face_volume.node", dir / "face_volume.ele", dir / "face_surface.obj",
+                           dir / "face_surface_vertex_to_node.txt");
   const TetMesh face = readTetgen((dir / "face_volume.node").string(), (dir / "face_volume.ele").string()).mesh;
   std::vector<Eigen::Vector3d> v;
   std::ifstream obj(dir / "face_surface.obj");

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "TestData.hpp"
 #include "mesh/BoundaryFaces.hpp"
 #include "mesh/BoxMesh.hpp"
 #include "mesh/MeshQuality.hpp"
@@ -391,7 +392,7 @@ TEST(MeshQuality, RegularTetAndInvertedTet) {
 
 TEST(MeshQuality, ArtisynthFace) {
   const fs::path face = fs::path(ORTHOSIM_SHARED_DIR) / "cases" / "artisynth_face";
-  if (!fs::exists(face / "face_volume.node")) GTEST_SKIP() << "no shared data at " << face;
+  SKIP_WITHOUT_SHARED_DATA(face / "face_volume.node", face / "face_volume.ele");
   const TetMesh m = readTetgen((face / "face_volume.node").string(), (face / "face_volume.ele").string()).mesh;
   const MeshQuality q = measureQuality(m);
   std::cout << "ArtiSynth face: " << q << "\n";

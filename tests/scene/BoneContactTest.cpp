@@ -11,6 +11,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "TestData.hpp"
 #include "mesh/BoxMesh.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
@@ -130,7 +131,8 @@ TEST(BoneContact, RefusesBadInputNamingTheDefect) {
 const fs::path kFace = fs::path(ORTHOSIM_SHARED_DIR) / "cases" / "artisynth_face";
 
 TEST(BoneContact, RealFaceDerivedMandibleGroupRecoversTheAttachedNodes) {
-  if (!fs::exists(kFace / "face_volume.node")) GTEST_SKIP() << "no shared data at " << kFace;
+  SKIP_WITHOUT_SHARED_DATA(kFace / "face_volume.node", kFace / "face_volume.ele", kFace / "deep_surface.txt",
+                           kFace / "attached_to_mandible.txt", kFace / "mandible.obj", kFace / "maxilla.obj");
   const TetgenMesh face = readTetgen((kFace / "face_volume.node").string(), (kFace / "face_volume.ele").string());
   const Eigen::Matrix3Xd& X = face.mesh.rest;
   const int n = face.mesh.numNodes();

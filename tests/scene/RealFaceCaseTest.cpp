@@ -13,6 +13,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "TestData.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "scene/CaseModel.hpp"
@@ -29,7 +30,9 @@ const fs::path kFace = fs::path(ORTHOSIM_SHARED_DIR) / "cases" / "artisynth_face
 class RealFaceCase : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!fs::exists(kFace / "face_volume.node")) GTEST_SKIP() << "no shared data at " << kFace;
+    SKIP_WITHOUT_SHARED_DATA(kFace / "face_volume.node", kFace / "face_volume.ele", kFace / "face_surface.obj",
+                             kFace / "maxilla.obj", kFace / "fixed_to_skull.txt", kFace / "deep_surface.txt",
+                             kFace / "mandible.obj", kFace / "attached_to_mandible.txt");
     dir_ = fs::temp_directory_path() / ("orthosim_face_case_" + std::to_string(::getpid()));
     fs::create_directories(dir_);
   }

@@ -10,6 +10,7 @@
 
 #include "HttpTestClient.hpp"
 #include "ServerProcess.hpp"
+#include "TestWait.hpp"
 #include "WsTestClient.hpp"
 
 namespace orthosim {
@@ -29,13 +30,12 @@ json health(const test::ServerProcess& server) {
 
 // Polls until the server reports no running or queued fine job (or the deadline passes).
 bool jobsDrain(const test::ServerProcess& server, std::chrono::milliseconds deadline) {
-  const auto end = std::chrono::steady_clock::now() + deadline;
-  while (std::chrono::steady_clock::now() < end) {
-    const json h = health(server);
-    if (h["jobs"]["running"] == 0 && h["jobs"]["queued"] == 0) return true;
-    std::this_thread::sleep_for(50ms);
-  }
-  return false;
+  return test::waitUntil(
+      [&] {
+        const json h = health(server);
+        return h["jobs"]["running"] == 0 && h["jobs"]["queued"] == 0;
+      },
+      deadline, 50ms);
 }
 
 TEST(PlanningJobs, CancelARunningAndAQueuedJob) {
@@ -72,9 +72,7 @@ TEST(PlanningJobs, ASessionThatDisconnectsTakesItsJobsWithIt) {
     EXPECT_EQ(health(server)["jobs"]["queued"], 1);
   }  // the connection drops without a goodbye
   EXPECT_TRUE(jobsDrain(server, 10s)) << health(server).dump();
-  const auto end = std::chrono::steady_clock::now() + 10s;
-  while (health(server)["sessions"] != 0 && std::chrono::steady_clock::now() < end) std::this_thread::sleep_for(50ms);
-  EXPECT_EQ(health(server)["sessions"], 0);
+  EXPECT_TRUE(test::waitUntil([&] { return health(server)["sessions"] == 0; }, 10s, 50ms)) << health(server).dump();
 }
 
 TEST(PlanningJobs, SigtermDuringAJobStopsCleanlyAndKeepsSavedPlans) {

@@ -10,6 +10,7 @@
 #include "HttpTestClient.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "ServerProcess.hpp"
+#include "TestWait.hpp"
 #include "WsTestClient.hpp"
 
 namespace orthosim {
@@ -96,11 +97,9 @@ TEST(ServerAccess, SessionsAreCapped) {
   EXPECT_EQ(test::upgradeStatus(server.port(), "/ws"), 503);
   first.reset();  // its slot comes back once the connection is gone
   int status = 0;
-  for (int i = 0; i < 100 && status != 101; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    status = test::upgradeStatus(server.port(), "/ws");
-  }
-  EXPECT_EQ(status, 101);
+  EXPECT_TRUE(test::waitUntil([&] { return (status = test::upgradeStatus(server.port(), "/ws")) == 101; },
+                              std::chrono::seconds(10), std::chrono::milliseconds(20)))
+      << "the slot never came back; last status " << status;
 }
 
 TEST(ServerCases, CaseFoldersJoinThePhantom) {

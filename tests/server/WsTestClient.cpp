@@ -13,6 +13,10 @@ using boost::asio::ip::tcp;
 
 namespace {
 
+// A server that stays silent this long fails the handshake instead of hanging the test.
+constexpr auto kHandshakeTimeout = std::chrono::seconds(10);
+
+// Asynchronously, because the stream's expiry only bounds asynchronous operations.
 void handshake(websocket::stream<beast::tcp_stream>& ws, boost::asio::io_context& io, unsigned short port,
                const std::string& target, const Headers& headers, websocket::response_type& response,
                beast::error_code& ec) {
@@ -22,8 +26,11 @@ void handshake(websocket::stream<beast::tcp_stream>& ws, boost::asio::io_context
   }));
   std::string host = "127.0.0.1:" + std::to_string(port);
   if (auto it = headers.find("Host"); it != headers.end()) host = it->second;
-  ws.handshake(response, host, target, ec);
-  (void)io;
+  beast::get_lowest_layer(ws).expires_after(kHandshakeTimeout);
+  ws.async_handshake(response, host, target, [&](beast::error_code e) { ec = e; });
+  io.restart();
+  io.run();
+  beast::get_lowest_layer(ws).expires_never();  // later reads are bounded by next()'s timeout
 }
 
 }  // namespace
@@ -145,8 +152,12 @@ int upgradeStatus(unsigned short port, const std::string& target, const Headers&
   beast::flat_buffer buffer;
   http::response_parser<http::empty_body> parser;
   parser.skip(true);  // headers only: a 101 reply has no body, a refusal's is not needed
-  stream.expires_after(std::chrono::seconds(10));
-  http::read_header(stream, buffer, parser);
+  // Asynchronously, so that the expiry applies: a server that never answers fails the test.
+  beast::error_code ec;
+  stream.expires_after(kHandshakeTimeout);
+  http::async_read_header(stream, buffer, parser, [&](beast::error_code e, std::size_t) { ec = e; });
+  io.run();
+  if (ec) throw boost::system::system_error(ec, "reading the upgrade reply");
   return parser.get().result_int();
 }
 

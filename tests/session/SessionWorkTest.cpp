@@ -6,6 +6,7 @@
 #include <fstream>
 #include <thread>
 
+#include "TestWait.hpp"
 #include "session/ExportStore.hpp"
 #include "session/JobQueue.hpp"
 #include "session/PlanStore.hpp"
@@ -15,6 +16,10 @@
 namespace orthosim::server {
 namespace {
 using namespace std::chrono_literals;
+using test::waitUntil;
+
+// Every wait below gives up after this long and fails the test (the tasks take milliseconds).
+constexpr auto kDeadline = 30s;
 
 // Runs until cancelled (or 5 s), then records whether it was.
 SerialWork::Body slowTask(std::atomic<int>& started, std::atomic<int>& cancelled) {
@@ -26,59 +31,61 @@ SerialWork::Body slowTask(std::atomic<int>& started, std::atomic<int>& cancelled
   };
 }
 
+// The tests declare what their tasks touch before the pool (or queue): a task still running when
+// a failed assertion leaves the test is joined by that destructor while they still exist.
 TEST(SerialWork, TheNewestSupersedableTaskWins) {
+  std::atomic<int> started{0}, cancelled{0}, lastRan{0};
   boost::asio::thread_pool pool(2);
   SerialWork work(pool);
-  std::atomic<int> started{0}, cancelled{0}, lastRan{0};
   work.submit(slowTask(started, cancelled), true);
-  while (started == 0) std::this_thread::sleep_for(1ms);
+  ASSERT_TRUE(waitUntil([&] { return started > 0; }, kDeadline)) << "the first task never started";
   for (int i = 1; i <= 10; ++i)
     work.submit([&, i](const std::atomic<bool>& cancel) { if (!cancel) lastRan = i; }, true);
-  while (!work.idle()) std::this_thread::sleep_for(1ms);
+  ASSERT_TRUE(waitUntil([&] { return work.idle(); }, kDeadline)) << "the work never became idle";
   EXPECT_EQ(cancelled, 1) << "the running preview was cancelled";
   EXPECT_EQ(lastRan, 10);
   pool.join();
 }
 
 TEST(SerialWork, OtherTasksRunInOrderAndAreNeverDropped) {
-  boost::asio::thread_pool pool(2);
-  SerialWork work(pool);
   std::vector<int> order;
   std::mutex m;
+  boost::asio::thread_pool pool(2);
+  SerialWork work(pool);
   for (int i = 0; i < 5; ++i) {
     work.submit([&, i](const std::atomic<bool>&) { std::lock_guard<std::mutex> l(m); order.push_back(i); }, false);
     work.submit([](const std::atomic<bool>&) {}, true);
   }
-  while (!work.idle()) std::this_thread::sleep_for(1ms);
+  ASSERT_TRUE(waitUntil([&] { return work.idle(); }, kDeadline)) << "the work never became idle";
   EXPECT_EQ(order, (std::vector<int>{0, 1, 2, 3, 4}));
   pool.join();
 }
 
 TEST(SerialWork, CloseCancelsAndRefuses) {
+  std::atomic<int> started{0}, cancelled{0};
   boost::asio::thread_pool pool(1);
   SerialWork work(pool);
-  std::atomic<int> started{0}, cancelled{0};
   work.submit(slowTask(started, cancelled), false);
-  while (started == 0) std::this_thread::sleep_for(1ms);
+  ASSERT_TRUE(waitUntil([&] { return started > 0; }, kDeadline)) << "the task never started";
   work.close();
   work.submit(slowTask(started, cancelled), false);
-  while (!work.idle()) std::this_thread::sleep_for(1ms);
+  ASSERT_TRUE(waitUntil([&] { return work.idle(); }, kDeadline)) << "the work never became idle";
   EXPECT_EQ(cancelled, 1);
   EXPECT_EQ(started, 1);
   pool.join();
 }
 
 TEST(JobQueue, BoundedCancellableAndOwned) {
-  JobQueue jobs(1, 2);
   std::atomic<int> started{0}, cancelled{0}, dropped{0};
+  JobQueue jobs(1, 2);
+  // Runs until cancelled; a job never cancelled ends at the deadline without counting itself.
   auto run = [&](const std::atomic<bool>& cancel) {
     ++started;
-    while (!cancel) std::this_thread::sleep_for(1ms);
-    ++cancelled;
+    if (waitUntil([&] { return cancel.load(); }, kDeadline)) ++cancelled;
   };
   const auto a = jobs.submit("s1", run, [&] { ++dropped; });
   ASSERT_TRUE(a);
-  while (started == 0) std::this_thread::sleep_for(1ms);
+  ASSERT_TRUE(waitUntil([&] { return started > 0; }, kDeadline)) << "the first job never started";
   const auto b = jobs.submit("s1", run, [&] { ++dropped; });
   const auto c = jobs.submit("s2", run, [&] { ++dropped; });
   ASSERT_TRUE(b && c);
@@ -90,7 +97,7 @@ TEST(JobQueue, BoundedCancellableAndOwned) {
   EXPECT_TRUE(jobs.cancel("s1", *b));
   EXPECT_EQ(dropped, 1);
   jobs.cancelOwner("s1");  // stops a, which lets c start
-  while (started < 2) std::this_thread::sleep_for(1ms);
+  ASSERT_TRUE(waitUntil([&] { return started >= 2; }, kDeadline)) << "c never started";
   EXPECT_EQ(cancelled, 1);
   jobs.shutdown();
   EXPECT_EQ(cancelled, 2);

@@ -110,20 +110,71 @@ TEST(PlanSolver, AdaptiveSubstepsRefineALargeMotion) {
   EXPECT_EQ(r.loadFraction, 1.0);
 }
 
+// A plan that no state can follow past a known load fraction, whatever the Newton criteria: two
+// bone slabs (A: every node with x <= 20 mm, B: every node with x >= 30 mm) with one layer of free
+// nodes at x = 25 mm between them, and B driven 15 mm into A. At load fraction 1/3 the gap between
+// the slabs is halved (a reachable state); at 2/3 the slabs meet and the layer between them would
+// need zero volume, so every position of its nodes inverts an element. Three fixed substeps and no
+// refinement: the first converges, the second must fail.
+Scene slabsDrivenIntoEachOther() {
+  Scene s = makeBlockScene(Eigen::Vector3i(12, 4, 2));  // nodes every 5 mm in x
+  FragmentSpec a{"A", {}, false}, b{"B", {}, false};
+  for (int i = 0; i < s.mesh.numNodes(); ++i) {
+    const double x = s.mesh.rest(0, i);
+    if (x <= 20.0) a.nodes.push_back(i);
+    if (x >= 30.0) b.nodes.push_back(i);
+  }
+  s.fragments = {a, b};
+  s.plan = {{"B", FragmentMotion{}}};
+  s.plan["B"].translation = {-15, 0, 0};
+  s.solver.substeps = 3;
+  s.solver.maxRefinements = 0;
+  return s;
+}
+
 TEST(PlanSolver, FailureKeepsTheLastConvergedStateAndSaysWhy) {
-  Scene s = coarseBlock();
-  s.plan["B"].translation = {0, 60, 0};  // far beyond what one element layer can follow
-  s.solver.maxIterations = 2;
-  s.solver.maxRefinements = 2;
+  const Scene s = slabsDrivenIntoEachOther();
   Model model(s);
-  const SolveResult r = solveScene(model);
+  const SimState rest = model.restState();
+  const PlanTargets targets = model.targetsFromPlan(s.plan, rest);
+  const SolveResult r = solvePlan(model, rest, targets, s.solver);
+  std::cout << "slabs driven into each other: " << r.error << "\n";
   EXPECT_FALSE(r.converged);
   EXPECT_NE(r.error.find("did not converge"), std::string::npos) << r.error;
-  EXPECT_LT(r.loadFraction, 1.0);
+  // The precondition of what follows: the first substep converged, the second failed.
+  ASSERT_EQ(r.substeps.size(), 2u) << r.error;
+  ASSERT_TRUE(r.substeps[0].converged) << r.substeps[0].failure;
+  EXPECT_FALSE(r.substeps[1].converged);
+  EXPECT_FALSE(r.substeps[1].failure.empty());
+  EXPECT_NE(r.error.find(r.substeps[1].failure), std::string::npos) << "the error says why: " << r.error;
+  ASSERT_DOUBLE_EQ(r.loadFraction, 1.0 / 3.0);
   EXPECT_TRUE(r.state.x.allFinite());
   EXPECT_GT(model.energy().minDetF(r.state.x), 0.0);
-  // The state kept is the converged one at the reported load fraction.
-  if (r.loadFraction == 0.0) EXPECT_EQ((r.state.x - s.mesh.rest).cwiseAbs().maxCoeff(), 0.0);
+
+  // The state kept is the converged one at the reported load fraction: the fragments exactly at
+  // the plan's pose there, the tissue in equilibrium, the figures those of the converged substep,
+  // and the state the plan up to that fraction reaches when solved on its own.
+  for (size_t f = 0; f < r.state.fragments.size(); ++f) {
+    const RigidPose want =
+        interpolate(rest.fragments[f], targets.boundary.fragments[f], r.loadFraction, targets.centers[f]);
+    EXPECT_LT((r.state.fragments[f].R - want.R).cwiseAbs().maxCoeff(), 1e-12) << f;
+    EXPECT_LT((r.state.fragments[f].b - want.b).cwiseAbs().maxCoeff(), 1e-9) << f;
+  }
+  EXPECT_GT((r.state.x - rest.x).cwiseAbs().maxCoeff(), 4.0) << "B moved 5 mm: not the rest state";
+  const Eigen::VectorXd residual = model.coupling().reduce(model.totalGradient(r.state), r.state);
+  EXPECT_LE(residual.lpNorm<Eigen::Infinity>(), model.forceTolerance());
+  EXPECT_EQ(r.energy, r.substeps[0].energy);
+  EXPECT_NEAR(model.totalEnergy(r.state), r.substeps[0].energy, 1e-12 * std::abs(r.substeps[0].energy));
+
+  // The plan up to that fraction (B 5 mm into A) solved on its own, in one substep as the failed
+  // solve's first: the same state, to the solver's step tolerance.
+  SolverSettings one = s.solver;
+  one.substeps = 1;
+  std::map<std::string, FragmentMotion> partial = s.plan;
+  partial["B"].translation *= r.loadFraction;
+  const SolveResult reference = solvePlan(model, rest, model.targetsFromPlan(partial, rest), one);
+  ASSERT_TRUE(reference.converged) << reference.error;
+  EXPECT_LT((reference.state.x - r.state.x).cwiseAbs().maxCoeff(), model.stepTolerance());
 }
 
 TEST(PlanSolver, GivesUpAfterItsIterationBudget) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "TestData.hpp"
 #include "scene/SceneFile.hpp"
 #include "solver/PlanSolver.hpp"
 
@@ -20,7 +21,8 @@ namespace {
 const fs::path kFace = fs::path(ORTHOSIM_SHARED_DIR) / "cases" / "artisynth_face";
 
 TEST(RealFace, MandibularSetbackMovesTheChinWithTheBoneAndNotTheNose) {
-  if (!fs::exists(kFace / "face_volume.node")) GTEST_SKIP() << "no shared data at " << kFace;
+  SKIP_WITHOUT_SHARED_DATA(kFace / "face_volume.node", kFace / "face_volume.ele", kFace / "attached_to_mandible.txt",
+                           kFace / "fixed_to_skull.txt", kFace / "skin_surface.txt");
   const fs::path dir = fs::temp_directory_path() / ("orthosim_face_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const double setback = 5.0;  // mm; +x is posterior in this frame
