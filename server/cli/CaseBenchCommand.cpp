@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "cli/Commands.hpp"
+#include "eval/Statistics.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseModel.hpp"
 #include "scene/PlanFile.hpp"
@@ -20,12 +21,6 @@ namespace orthosim::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 double percentile(std::vector<double> v, double p) {
   std::sort(v.begin(), v.end());

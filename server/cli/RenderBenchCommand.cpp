@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "cli/Commands.hpp"
+#include "eval/Statistics.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "render/CaseView.hpp"
 #include "render/ClinicalView.hpp"
@@ -23,12 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 double ms(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
 
