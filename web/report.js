@@ -1,4 +1,4 @@
-// The accuracy report: the last `orthosim bench --cohort` run written into web/cohort/ (its JSON
+// The accuracy report: the last `orthosim bench cohort` run written into web/cohort/ (its JSON
 // and speed-versus-error plot), shown as the paper's Table 4 and the soft-to-hard ratios with
 // their plausibility flags. Loaded only when the clinician opens the report.
 "use strict";
@@ -69,7 +69,7 @@ async function loadReport() {
     report = await response.json();
   } catch (e) {
     box.textContent = `No accuracy report on this server (${e.message}). ` +
-      "Write one with: orthosim bench --cohort --json web/cohort/cohort.json --image web/cohort/speed-error.png";
+      "Write one with: orthosim bench cohort --json web/cohort/cohort.json --image web/cohort/speed-error.png";
     delete box.dataset.loaded;
     return;
   }

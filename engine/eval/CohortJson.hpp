@@ -1,5 +1,5 @@
 #pragma once
-// The JSON of `orthosim bench --cohort` (web/cohort/cohort.json, read by web/report.js): the parts
+// The JSON of `orthosim bench cohort` (web/cohort/cohort.json, read by web/report.js): the parts
 // that describe one run and a row of movement ratios.
 #include <nlohmann/json.hpp>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
 // One solve of a cohort case (engine/eval/Cohort) at a skin resolution and a tolerance scale, and
 // its skin measured against a discretisation reference: a finer mesh of the same plan solved to
-// tight tolerances (`orthosim bench --cohort`).
+// tight tolerances (`orthosim bench cohort`).
 #include <string>
 #include <vector>
 

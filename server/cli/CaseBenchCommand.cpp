@@ -1,4 +1,4 @@
-// `orthosim bench --case FILE` (or --phantom): how long a case takes to become a model, cold and
+// `orthosim bench case FILE` (or `bench phantom`): how long a case takes to become a model, cold and
 // from the cache, at coarse and fine resolution, with the counts and mesh quality, the solve of
 // the case's plan, and how far the coarse prediction lies from the fine one on the same skin.
 #include <algorithm>

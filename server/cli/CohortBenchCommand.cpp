@@ -1,4 +1,4 @@
-// `orthosim bench --cohort`: the synthetic cohort of issue 7 (engine/eval/Cohort) solved at coarse
+// `orthosim bench cohort`: the synthetic cohort of issue 7 (engine/eval/Cohort) solved at coarse
 // and fine resolution and measured against a discretisation reference (a much finer mesh solved to
 // tight tolerances): the paper's Table 4 (triangles, solve time, share of the face within 3 mm),
 // a speed-versus-error plot over mesh resolutions and solver tolerances, and the soft-to-hard
@@ -78,7 +78,7 @@ int runCohortBench(const CohortBenchOptions& opt) {
     fs::create_directories(data);
     const std::string cacheDir = (data / "cache").string();
 
-    std::printf("orthosim bench --cohort: %d of %zu phantom patients (engine/eval/Cohort), %u hardware threads (load average %s), "
+    std::printf("orthosim bench cohort: %d of %zu phantom patients (engine/eval/Cohort), %u hardware threads (load average %s), "
                 "solve times medians of %d\n"
                 "reference: each patient's plan on a mesh of %d skin triangles, solved to %g of the default tolerances\n"
                 "  (force %g E h^2, step %g h; up to %d iterations): a discretisation reference, not clinical truth\n"
@@ -291,12 +291,12 @@ int runCohortBench(const CohortBenchOptions& opt) {
     }
     if (tempData) fs::remove_all(data);
     if (failed) {
-      std::fprintf(stderr, "orthosim bench --cohort: %d of %d patients not measured (see the table)\n", failed, n);
+      std::fprintf(stderr, "orthosim bench cohort: %d of %d patients not measured (see the table)\n", failed, n);
       return 2;
     }
     return 0;
   } catch (const std::exception& e) {
-    std::cerr << "orthosim bench --cohort: " << e.what() << "\n";
+    std::cerr << "orthosim bench cohort: " << e.what() << "\n";
     return 1;
   }
 }

@@ -1,4 +1,4 @@
-// `orthosim bench --latency`: what a clinician dragging a fragment waits for. Starts the planning
+// `orthosim bench latency`: what a clinician dragging a fragment waits for. Starts the planning
 // server in this process on a free port, opens the phantom over a real WebSocket, and times 50
 // pose changes from sending set_poses to receiving the preview and then its frame, beside the
 // solve's own time.
@@ -110,7 +110,7 @@ int runLatencyBench(const LatencyBenchOptions& options) {
                                       << "\n";
     }
   } catch (const std::exception& e) {
-    std::cerr << "orthosim bench --latency: " << e.what() << "\n";
+    std::cerr << "orthosim bench latency: " << e.what() << "\n";
     status = 1;
   }
   server.stop();

@@ -1,4 +1,4 @@
-// `orthosim bench --render`: frames per second while orbiting the phantom's predicted face, each
+// `orthosim bench render`: frames per second while orbiting the phantom's predicted face, each
 // frame drawn off-screen, read back and JPEG-encoded (what a streaming server does per frame), at
 // coarse and fine resolution; plus the cost of a new deformed skin (positions and normals upload).
 #include <algorithm>
@@ -119,7 +119,7 @@ int runRenderBench(const RenderBenchOptions& opt) {
   const CaseSpec spec = loadCaseFile(writePhantomCase(0, (work / "case").string()));
   const RgbImage texture = render::caseTexture(spec);
   render::Renderer plain(opt.width, opt.height, 0), smooth(opt.width, opt.height, 4);
-  std::printf("orthosim bench --render: phantom '%s' with its plan solved, %dx%d, %d frames per turn around the head,\n"
+  std::printf("orthosim bench render: phantom '%s' with its plan solved, %dx%d, %d frames per turn around the head,\n"
               "medians of %d turns; %s\n"
               "fps: frames per second of render + read back + JPEG encode; render_ms: draw and read back;\n"
               "cpu_ms: CPU time of all threads per frame (the machine's cost, whatever else runs);\n"

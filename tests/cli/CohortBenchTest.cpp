@@ -1,4 +1,4 @@
-// `orthosim bench --cohort` in its small CI form: two patients, small meshes, no contact. The table
+// `orthosim bench cohort` in its small CI form: two patients, small meshes, no contact. The table
 // has a row per patient with finite figures, fine is at least as accurate as coarse within 1 mm,
 // the soft-to-hard ratios are computed, and the plot and JSON are written. The full cohort (ten
 // patients, product meshes) takes minutes and runs by hand (README). The skin simplification does
@@ -31,7 +31,7 @@ class CohortBench : public ::testing::Test {
   int run(const std::string& args) {
     // One BLAS thread: timings are not checked here, and on a loaded machine two spinning OpenBLAS
     // threads slow the solves several-fold.
-    const std::string cmd = "OPENBLAS_NUM_THREADS=1 " + std::string(ORTHOSIM_CLI) + " bench --cohort " + args + " > " + (dir_ / "out.txt").string() +
+    const std::string cmd = "OPENBLAS_NUM_THREADS=1 " + std::string(ORTHOSIM_CLI) + " bench cohort " + args + " > " + (dir_ / "out.txt").string() +
                             " 2> " + (dir_ / "err.txt").string();
     return WEXITSTATUS(std::system(cmd.c_str()));
   }
