@@ -259,7 +259,8 @@ int runCohortBench(const CohortBenchOptions& opt) {
                 "within 1 mm %.1f%%, 3 mm %.1f%%\n",
                 static_cast<int>(ct.size()), median(ct), 100 * median(c1), 100 * median(c3), median(ft), 100 * median(f1), 100 * median(f3));
 
-    json out = {{"reference",
+    json out = {{"schema_version", kCohortReportSchemaVersion},
+                {"reference",
                  {{"skin_triangles", opt.referenceTriangles},
                   {"tolerance_scale", opt.referenceToleranceScale},
                   {"max_total_iterations", kCohortReferenceIterations},

@@ -11,8 +11,11 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 #include <unistd.h>
 
+#include "eval/CohortJson.hpp"
 #include "render/PngFile.hpp"
 
 namespace fs = std::filesystem;
@@ -63,6 +66,20 @@ TEST_F(CohortBench, TwoPatientsTablePlotAndRatios) {
   std::ifstream in(json);
   const nlohmann::json j = nlohmann::json::parse(in);
   ASSERT_EQ(j["patients"].size(), 2u);
+  // The format: the writer's schema version, and the fields of the committed snapshot that the
+  // page shows (web/cohort/cohort.json, test web.AccuracyReport), so a changed format is noticed.
+  EXPECT_EQ(j["schema_version"], kCohortReportSchemaVersion);
+  std::ifstream committedFile(std::string(ORTHOSIM_SOURCE_DIR) + "/web/cohort/cohort.json");
+  const nlohmann::json committed = nlohmann::json::parse(committedFile);
+  const auto keys = [](const nlohmann::json& o) {
+    std::vector<std::string> k;
+    for (const auto& item : o.items()) k.push_back(item.key());
+    return k;
+  };
+  EXPECT_EQ(keys(j), keys(committed));
+  EXPECT_EQ(keys(j["patients"][0]), keys(committed["patients"][0]));
+  for (const char* run : {"coarse", "fine"}) EXPECT_EQ(keys(j["patients"][0][run]), keys(committed["patients"][0][run])) << run;
+  EXPECT_EQ(keys(j["patients"][0]["ratios_fine"][0]), keys(committed["patients"][0]["ratios_fine"][0]));
   for (const auto& p : j["patients"]) {
     SCOPED_TRACE(p["id"].get<std::string>());
     for (const char* res : {"coarse", "fine"}) {
