@@ -455,17 +455,11 @@ void PlanningSession::confirm(MessageReader& r, const json& id) {
     poses = poses_;
   }
   auto self = shared_from_this();
-  auto jobId = std::make_shared<std::atomic<long long>>(0);
   const std::optional<long long> job = service_.fineJobs().submit(
-      id_,
-      [self, c, poses, jobId](const std::atomic<bool>& cancel) {
-        while (jobId->load() == 0) std::this_thread::yield();  // submit() has not returned yet
-        self->runFine(jobId->load(), c, poses, cancel);
-      },
-      [self, jobId] { self->reply({{"type", "job_cancelled"}, {"job", jobId->load()}, {"phase", "queued"}}, nullptr); });
+      id_, [self, c, poses](long long job, const std::atomic<bool>& cancel) { self->runFine(job, c, poses, cancel); },
+      [self](long long job) { self->reply({{"type", "job_cancelled"}, {"job", job}, {"phase", "queued"}}, nullptr); });
   if (!job)
     throw ProtocolError("busy", "the fine-job queue is full; try again when a job has finished");
-  jobId->store(*job);
   reply({{"type", "job_queued"},
          {"job", *job},
          {"case", c->id},
