@@ -1,6 +1,6 @@
 #pragma once
 // A predicted skin as a file to download (the "export" message, docs/protocol.md): STL, OBJ or
-// PLY bytes with the file's name and content type; the session keeps them in its ExportStore.
+// PLY bytes with the file's name and content type, for the service's ExportStore to serve.
 #include <Eigen/Core>
 #include <string>
 
