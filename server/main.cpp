@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "cli/BenchCommands.hpp"
 #include "cli/Commands.hpp"
 #include "scene/CaseTissue.hpp"
 
@@ -26,55 +27,7 @@ int main(int argc, char** argv) {
   auto* demo = app.add_subcommand("demo", "Write the built-in demo scene and solve it (no data needed)");
   demo->add_option("--out", demoOut, "Output folder (scene/ and result/ inside)");
 
-  orthosim::cli::BenchOptions bench;
-  auto* benchCmd = app.add_subcommand("bench", "Time solves of generated blocks with two bonded fragments");
-  benchCmd->add_option("--tets", bench.tetCounts, "Approximate tetrahedron counts")->delimiter(',');
-  benchCmd->add_option("--repeats", bench.repeats, "Solves per size (median reported)")->check(CLI::Range(1, 100));
-  benchCmd->add_option("--json", bench.jsonPath, "Also write the figures to this JSON file");
-  orthosim::cli::CaseBenchOptions caseBench;
-  bool benchPhantom = false;
-  benchCmd->add_option("--case", caseBench.casePath, "Time building a case's models instead (surface-based case file)")
-      ->check(CLI::ExistingFile);
-  benchCmd->add_flag("--phantom", benchPhantom, "Time building the phantom's coarse and fine models instead");
-  benchCmd->add_option("--plan", caseBench.planPath,
-                       "With --phantom or --case: a JSON file {fragment: {translation_mm, rotation_deg, center_mm}} "
-                       "solved instead of the case's plan")->check(CLI::ExistingFile);
-  benchCmd->add_option("--variant", caseBench.phantomVariant, "Phantom variant for --phantom")->check(CLI::Range(0, 100));
-  bool benchLatency = false;
-  orthosim::cli::LatencyBenchOptions latency;
-  latency.webDir = ORTHOSIM_WEB_DIR;
-  benchCmd->add_flag("--latency", benchLatency,
-                     "Time coarse previews through the planning server (WebSocket round trips on the phantom)");
-  benchCmd->add_option("--changes", latency.changes, "Pose changes for --latency")->check(CLI::Range(1, 10000));
-  benchCmd->add_option("--data", latency.dataDir, "Data folder for --latency (phantom and mesh cache, reused)");
-
-  bool benchRender = false;
-  orthosim::cli::RenderBenchOptions renderBench;
-  benchCmd->add_flag("--render", benchRender, "Time off-screen rendering instead: orbiting the phantom's predicted face "
-                     "at coarse and fine resolution (render + read back + JPEG encode)");
-  benchCmd->add_option("--frames", renderBench.frames, "With --render: frames per turn around the head")->check(CLI::Range(4, 3600));
-  benchCmd->add_option("--width", renderBench.width, "With --render: image width")->check(CLI::Range(16, 8192));
-  benchCmd->add_option("--height", renderBench.height, "With --render: image height")->check(CLI::Range(16, 8192));
-
-  bool benchCohort = false;
-  orthosim::cli::CohortBenchOptions cohort;
-  benchCmd->add_flag("--cohort", benchCohort,
-                     "The synthetic cohort (ten phantom patients): coarse and fine against a finer reference, "
-                     "Table 4, speed-versus-error plot, soft-to-hard movement ratios");
-  benchCmd->add_option("--patients", cohort.patients, "With --cohort: the first N patients (0: only --face)")->check(CLI::Range(0, 10));
-  benchCmd->add_option("--patient", cohort.patientIds, "With --cohort: only these patients (e.g. --patient M4 --patient M9)");
-  benchCmd->add_option("--face", cohort.facePath,
-                       "With --cohort: also the soft-to-hard ratios of the ArtiSynth face (../shared/cases/artisynth_face)");
-  benchCmd->add_option("--image", cohort.imagePath, "With --cohort: the speed-versus-error plot (.png or .jpg)");
-  benchCmd->add_option("--coarse-triangles", cohort.coarseTriangles, "With --cohort: coarse skin triangles");
-  benchCmd->add_option("--fine-triangles", cohort.fineTriangles, "With --cohort: fine skin triangles");
-  benchCmd->add_option("--reference-triangles", cohort.referenceTriangles, "With --cohort: the reference's skin triangles");
-  benchCmd->add_option("--reference-tolerance", cohort.referenceToleranceScale,
-                       "With --cohort: the reference's tolerances as a multiple of the defaults")->check(CLI::Range(1e-9, 1.0));
-  benchCmd->add_flag("--no-contact", cohort.noContact,
-                     "With --cohort: leave out the lips-teeth contact (a quick check; not the product's model)");
-  benchCmd->add_option("--sweep-patients", cohort.sweepPatients,
-                       "With --cohort: patients also solved over more resolutions and tolerances for the plot")->check(CLI::Range(0, 10));
+  orthosim::cli::BenchCommands bench(app);
 
   int phantomVariant = 0;
   std::string phantomOut = "phantom";
@@ -169,28 +122,7 @@ int main(int argc, char** argv) {
       return orthosim::cli::runSolve(scene, out, solveOptions);
     }
     if (*demo) return orthosim::cli::runDemo(demoOut);
-    if (*benchCmd && benchCohort) {
-      cohort.repeats = bench.repeats == 5 ? 3 : bench.repeats;
-      cohort.jsonPath = bench.jsonPath;
-      if (benchCmd->count("--data")) cohort.dataDir = latency.dataDir;
-      return orthosim::cli::runCohortBench(cohort);
-    }
-    if (*benchCmd && benchLatency) {
-      latency.phantomVariant = caseBench.phantomVariant;
-      latency.jsonPath = bench.jsonPath;
-      return orthosim::cli::runLatencyBench(latency);
-    }
-    if (*benchCmd && benchRender) {
-      renderBench.repeats = bench.repeats == 5 ? 3 : bench.repeats;
-      renderBench.jsonPath = bench.jsonPath;
-      return orthosim::cli::runRenderBench(renderBench);
-    }
-    if (*benchCmd && (benchPhantom || !caseBench.casePath.empty())) {
-      caseBench.repeats = bench.repeats == 5 ? 3 : bench.repeats;
-      caseBench.jsonPath = bench.jsonPath;
-      return orthosim::cli::runCaseBench(caseBench);
-    }
-    if (*benchCmd) return orthosim::cli::runBench(bench);
+    if (bench.chosen()) return bench.run();
     if (*phantom) return orthosim::cli::runPhantom(phantomVariant, phantomOut);
     if (*serve) return orthosim::cli::runServe(serveOptions);
     if (*render) {

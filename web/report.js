@@ -1,10 +1,12 @@
-// The accuracy report: the last `orthosim bench --cohort` run written into web/cohort/ (its JSON
+// The accuracy report: the last `orthosim bench cohort` run written into web/cohort/ (its JSON
 // and speed-versus-error plot), shown as the paper's Table 4 and the soft-to-hard ratios with
 // their plausibility flags. Loaded only when the clinician opens the report.
 "use strict";
 
 const REPORT_JSON = "cohort/cohort.json";
 const REPORT_PLOT = "cohort/speed-error.png";
+// The report format this page reads: the bench's kCohortReportSchemaVersion (engine/eval/CohortJson.hpp).
+const REPORT_SCHEMA_VERSION = 1;
 
 function reportCell(row, text, className) {
   const cell = document.createElement(row.parentElement && row.parentElement.tagName === "THEAD" ? "th" : "td");
@@ -69,7 +71,7 @@ async function loadReport() {
     report = await response.json();
   } catch (e) {
     box.textContent = `No accuracy report on this server (${e.message}). ` +
-      "Write one with: orthosim bench --cohort --json web/cohort/cohort.json --image web/cohort/speed-error.png";
+      "Write one with: orthosim bench cohort --json web/cohort/cohort.json --image web/cohort/speed-error.png";
     delete box.dataset.loaded;
     return;
   }
@@ -93,6 +95,20 @@ async function loadReport() {
     "(forward movement over the bone's, as the studies measure them; plausibility checks, not clinical " +
     "validation); flagged values fall outside.";
   box.append(intro, tableFour(report), runNotes(report), plot, ratiosIntro, ratioTable(report));
+  const stale = schemaNote(report);
+  if (stale) box.prepend(stale);
+}
+
+// A report written in another format is still shown as far as it reads, under a warning.
+function schemaNote(report) {
+  if (report.schema_version === REPORT_SCHEMA_VERSION) return null;
+  const note = document.createElement("p");
+  note.id = "report-schema";
+  note.className = "hint flag";
+  note.textContent = `This report is in format ${report.schema_version ?? "(none: older than format 1)"}, ` +
+    `this page reads format ${REPORT_SCHEMA_VERSION}: some figures may be missing or misread. Refresh it with ` +
+    "orthosim bench cohort --json web/cohort/cohort.json --image web/cohort/speed-error.png";
+  return note;
 }
 
 // What the table's numbers rest on: references solved differently, and the solver's warnings.

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
+#include "cases/Identifier.hpp"
 #include "phantom/Phantom.hpp"
 #include "scene/CaseFile.hpp"
-#include "session/MessageReader.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;

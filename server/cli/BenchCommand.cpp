@@ -6,18 +6,13 @@
 #include <thread>
 
 #include "cli/Commands.hpp"
+#include "eval/Statistics.hpp"
 #include "mesh/BoxMesh.hpp"
 #include "scene/BlockScene.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim::cli {
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 double seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

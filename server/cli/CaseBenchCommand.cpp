@@ -1,4 +1,4 @@
-// `orthosim bench --case FILE` (or --phantom): how long a case takes to become a model, cold and
+// `orthosim bench case FILE` (or `bench phantom`): how long a case takes to become a model, cold and
 // from the cache, at coarse and fine resolution, with the counts and mesh quality, the solve of
 // the case's plan, and how far the coarse prediction lies from the fine one on the same skin.
 #include <algorithm>
@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "cli/Commands.hpp"
+#include "eval/Statistics.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseModel.hpp"
 #include "scene/PlanFile.hpp"
@@ -20,12 +21,6 @@ namespace orthosim::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 double percentile(std::vector<double> v, double p) {
   std::sort(v.begin(), v.end());

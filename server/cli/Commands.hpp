@@ -42,7 +42,7 @@ struct LatencyBenchOptions {
   std::string webDir;
   std::string jsonPath;
 };
-// Round-trip latency of coarse previews through the planning server (bench --latency).
+// Round-trip latency of coarse previews through the planning server (bench latency).
 int runLatencyBench(const LatencyBenchOptions& options);
 
 struct RenderCommandOptions {
@@ -69,7 +69,7 @@ struct RenderBenchOptions {
   int width = 800, height = 600;
   std::string jsonPath;
 };
-// `orthosim bench --render`: frames per second of render + read back + JPEG encode while orbiting
+// `orthosim bench render`: frames per second of render + read back + JPEG encode while orbiting
 // the phantom's predicted face, coarse and fine, without and with 4x multisampling.
 int runRenderBench(const RenderBenchOptions& options);
 
@@ -87,7 +87,7 @@ struct CohortBenchOptions {
   std::string jsonPath, imagePath;
   std::string dataDir;             // cohort cases and tissue cache (kept); empty: a temporary folder
 };
-// `orthosim bench --cohort`: the paper's Table 4 on the synthetic cohort, the speed-versus-error
+// `orthosim bench cohort`: the paper's Table 4 on the synthetic cohort, the speed-versus-error
 // plot, the soft-to-hard movement ratios. 0 when every patient is measured, 1 on bad input, 2 when
 // a patient could not be (its row says why; the others are still measured and written).
 int runCohortBench(const CohortBenchOptions& options);

@@ -1,4 +1,4 @@
-// `orthosim bench --latency`: what a clinician dragging a fragment waits for. Starts the planning
+// `orthosim bench latency`: what a clinician dragging a fragment waits for. Starts the planning
 // server in this process on a free port, opens the phantom over a real WebSocket, and times 50
 // pose changes from sending set_poses to receiving the preview and then its frame, beside the
 // solve's own time.
@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "cli/Commands.hpp"
+#include "eval/Statistics.hpp"
 #include "net/Server.hpp"
 
 namespace orthosim::cli {
@@ -93,23 +94,23 @@ int runLatencyBench(const LatencyBenchOptions& options) {
       toFrame.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - s).count());
     }
     std::cout << std::fixed << std::setprecision(3) << "preview latency over " << options.changes
-              << " pose changes (send -> preview received): median " << quantile(roundTrip, 0.5) << " s, p95 "
+              << " pose changes (send -> preview received): median " << median(roundTrip) << " s, p95 "
               << quantile(roundTrip, 0.95) << " s, max " << quantile(roundTrip, 1.0) << " s\n"
-              << "until its frame (send -> JPEG received): median " << quantile(toFrame, 0.5) << " s, p95 "
+              << "until its frame (send -> JPEG received): median " << median(toFrame) << " s, p95 "
               << quantile(toFrame, 0.95) << " s\n"
-              << "solve time alone: median " << quantile(solve, 0.5) << " s, p95 " << quantile(solve, 0.95)
+              << "solve time alone: median " << median(solve) << " s, p95 " << quantile(solve, 0.95)
               << " s  (target: median latency < 1 s)\n";
     if (!options.jsonPath.empty()) {
       std::ofstream(options.jsonPath) << json{{"changes", options.changes},
-                                              {"latency_s", {{"median", quantile(roundTrip, 0.5)}, {"p95", quantile(roundTrip, 0.95)}}},
-                                              {"solve_s", {{"median", quantile(solve, 0.5)}, {"p95", quantile(solve, 0.95)}}},
-                                              {"frame_s", {{"median", quantile(toFrame, 0.5)}, {"p95", quantile(toFrame, 0.95)}}},
+                                              {"latency_s", {{"median", median(roundTrip)}, {"p95", quantile(roundTrip, 0.95)}}},
+                                              {"solve_s", {{"median", median(solve)}, {"p95", quantile(solve, 0.95)}}},
+                                              {"frame_s", {{"median", median(toFrame)}, {"p95", quantile(toFrame, 0.95)}}},
                                               {"round_trips_s", roundTrip}}
                                              .dump(2)
                                       << "\n";
     }
   } catch (const std::exception& e) {
-    std::cerr << "orthosim bench --latency: " << e.what() << "\n";
+    std::cerr << "orthosim bench latency: " << e.what() << "\n";
     status = 1;
   }
   server.stop();

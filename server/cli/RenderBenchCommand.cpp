@@ -1,4 +1,4 @@
-// `orthosim bench --render`: frames per second while orbiting the phantom's predicted face, each
+// `orthosim bench render`: frames per second while orbiting the phantom's predicted face, each
 // frame drawn off-screen, read back and JPEG-encoded (what a streaming server does per frame), at
 // coarse and fine resolution; plus the cost of a new deformed skin (positions and normals upload).
 #include <algorithm>
@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "cli/Commands.hpp"
+#include "eval/Statistics.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "render/CaseView.hpp"
 #include "render/ClinicalView.hpp"
@@ -23,12 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 double ms(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
 
@@ -124,7 +119,7 @@ int runRenderBench(const RenderBenchOptions& opt) {
   const CaseSpec spec = loadCaseFile(writePhantomCase(0, (work / "case").string()));
   const RgbImage texture = render::caseTexture(spec);
   render::Renderer plain(opt.width, opt.height, 0), smooth(opt.width, opt.height, 4);
-  std::printf("orthosim bench --render: phantom '%s' with its plan solved, %dx%d, %d frames per turn around the head,\n"
+  std::printf("orthosim bench render: phantom '%s' with its plan solved, %dx%d, %d frames per turn around the head,\n"
               "medians of %d turns; %s\n"
               "fps: frames per second of render + read back + JPEG encode; render_ms: draw and read back;\n"
               "cpu_ms: CPU time of all threads per frame (the machine's cost, whatever else runs);\n"

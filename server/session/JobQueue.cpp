@@ -33,26 +33,26 @@ bool JobQueue::cancel(const std::string& owner, long long id) {
     dropped = std::move(it->dropped);
     queue_.erase(it);
   }
-  if (dropped) dropped();  // outside the lock: it sends a message
+  if (dropped) dropped(id);  // outside the lock: it sends a message
   return true;
 }
 
 void JobQueue::cancelOwner(const std::string& owner) {
-  std::vector<Dropped> dropped;
+  std::vector<std::pair<long long, Dropped>> dropped;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     for (Job* j : active_)
       if (j->owner == owner) j->cancel->store(true);
     for (auto it = queue_.begin(); it != queue_.end();)
       if (it->owner == owner) {
-        dropped.push_back(std::move(it->dropped));
+        dropped.emplace_back(it->id, std::move(it->dropped));
         it = queue_.erase(it);
       } else {
         ++it;
       }
   }
-  for (Dropped& d : dropped)
-    if (d) d();
+  for (auto& [id, d] : dropped)
+    if (d) d(id);
 }
 
 std::optional<int> JobQueue::position(long long id) const {
@@ -73,18 +73,18 @@ int JobQueue::queued() const {
 }
 
 void JobQueue::shutdown() {
-  std::vector<Dropped> dropped;
+  std::vector<std::pair<long long, Dropped>> dropped;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (stopping_ && workers_.empty()) return;
     stopping_ = true;
     for (Job* j : active_) j->cancel->store(true);
-    for (Job& j : queue_) dropped.push_back(std::move(j.dropped));
+    for (Job& j : queue_) dropped.emplace_back(j.id, std::move(j.dropped));
     queue_.clear();
     wake_.notify_all();
   }
-  for (Dropped& d : dropped)
-    if (d) d();
+  for (auto& [id, d] : dropped)
+    if (d) d(id);
   for (std::thread& t : workers_) t.join();
   workers_.clear();
 }
@@ -101,7 +101,7 @@ void JobQueue::work() {
       active_.push_back(&job);
     }
     try {
-      job.run(*job.cancel);
+      job.run(job.id, *job.cancel);
     } catch (...) {
       // A job reports its own failure; the worker carries on.
     }

@@ -18,9 +18,10 @@ namespace orthosim::server {
 
 class JobQueue {
  public:
-  // run: the job itself; dropped: called instead when it is cancelled before it started.
-  using Run = std::function<void(const std::atomic<bool>& cancel)>;
-  using Dropped = std::function<void()>;
+  // run: the job itself; dropped: called instead when it is cancelled before it started. Both
+  // get the job's id, the one submit() returns.
+  using Run = std::function<void(long long job, const std::atomic<bool>& cancel)>;
+  using Dropped = std::function<void(long long job)>;
 
   JobQueue(int workers, int capacity);
   ~JobQueue();

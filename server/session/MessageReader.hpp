@@ -38,8 +38,4 @@ class MessageReader {
   std::set<std::string> seen_;
 };
 
-// Case and plan names: 1-64 of [A-Za-z0-9_-], starting with a letter or digit. They become file
-// names, so nothing else (no '.', '/', spaces) is ever accepted.
-bool isIdentifier(const std::string& s);
-
 }  // namespace orthosim::server

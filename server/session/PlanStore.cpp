@@ -10,7 +10,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "session/MessageReader.hpp"
+#include "cases/Identifier.hpp"
+#include "session/ProtocolError.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;

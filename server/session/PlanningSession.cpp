@@ -4,9 +4,11 @@
 #include <chrono>
 
 #include "eval/SkinFigures.hpp"
-#include "mesh/SurfaceImport.hpp"
 #include "scene/Osteotomy.hpp"
 #include "render/SurfaceDifference.hpp"
+#include "session/FineJob.hpp"
+#include "session/SavedPlan.hpp"
+#include "session/SkinExport.hpp"
 #include "session/SolveFiguresJson.hpp"
 #include "solver/Model.hpp"
 #include "solver/NewtonSolver.hpp"
@@ -17,8 +19,6 @@ using nlohmann::json;
 using Poses = std::map<std::string, AnatomicalPose>;
 
 namespace {
-
-constexpr const char* kPlanFormat = "orthosim-plan-1";
 
 struct FragmentInfo {
   std::string name, bone;
@@ -460,17 +460,11 @@ void PlanningSession::confirm(MessageReader& r, const json& id) {
     poses = poses_;
   }
   auto self = shared_from_this();
-  auto jobId = std::make_shared<std::atomic<long long>>(0);
   const std::optional<long long> job = service_.fineJobs().submit(
-      id_,
-      [self, c, poses, jobId](const std::atomic<bool>& cancel) {
-        while (jobId->load() == 0) std::this_thread::yield();  // submit() has not returned yet
-        self->runFine(jobId->load(), c, poses, cancel);
-      },
-      [self, jobId] { self->reply({{"type", "job_cancelled"}, {"job", jobId->load()}, {"phase", "queued"}}, nullptr); });
+      id_, [self, c, poses](long long job, const std::atomic<bool>& cancel) { self->runFine(job, c, poses, cancel); },
+      [self](long long job) { self->reply({{"type", "job_cancelled"}, {"job", job}, {"phase", "queued"}}, nullptr); });
   if (!job)
     throw ProtocolError("busy", "the fine-job queue is full; try again when a job has finished");
-  jobId->store(*job);
   reply({{"type", "job_queued"},
          {"job", *job},
          {"case", c->id},
@@ -480,51 +474,31 @@ void PlanningSession::confirm(MessageReader& r, const json& id) {
 
 void PlanningSession::runFine(long long job, const std::shared_ptr<OpenCase>& c, Poses poses,
                               const std::atomic<bool>& cancel) {
-  const auto t0 = std::chrono::steady_clock::now();
-  auto progress = [&](const char* phase, double fraction) {
-    reply({{"type", "job_progress"}, {"job", job}, {"phase", phase}, {"fraction", fraction}}, nullptr);
-  };
-  auto cancelled = [&](const char* phase) {
-    reply({{"type", "job_cancelled"}, {"job", job}, {"phase", phase}}, nullptr);
-  };
   try {
-    // Fractions: meshing (cached after the first time) to 0.3, the model to 0.4, the solve to 1.
-    progress("mesh", 0.0);
-    const std::shared_ptr<const CaseModel> fine = service_.cases().model(c->id, Resolution::Fine);
-    if (cancel) return cancelled("mesh");
-    progress("model", 0.3);
-    Model model(fine->scene);
-    if (cancel) return cancelled("model");
-    progress("solve", 0.4);
-    SolveControl control;
-    control.cancel = &cancel;
-    control.onProgress = [&](const SolveProgress& p) { progress("solve", 0.4 + 0.6 * p.loadFraction); };
-    const std::map<std::string, FragmentMotion> plan = c->plan(poses);  // same case file: same frame and pivots
-    const SimState rest = model.restState();
-    const SolveResult result = solvePlan(model, rest, model.targetsFromPlan(plan, rest), model.scene().solver, control);
-    if (result.error == kCancelled) return cancelled("solve");
-    json figures = solveFiguresJson(*fine, SkinFigureProbe(*fine), result, fine->spec.frame);
-    figures["time_s"] = secondsSince(t0);
-    if (!result.converged)
-      return reply({{"type", "job_failed"}, {"job", job}, {"message", "the fine solve did not converge: " + result.error},
-                    {"figures", std::move(figures)}},
-                   nullptr);
-    auto done = std::make_shared<FineResult>(FineResult{job, c->id, fine, result.state.x, poses});
-    std::shared_ptr<const Eigen::Matrix3Xd> coarseX;
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      fine_ = done;
-      if (c->previewPoses == poses) coarseX = c->previewX;
-    }
-    json message = {{"type", "job_done"}, {"job", job}, {"case", c->id}, {"figures", std::move(figures)}};
-    if (coarseX) {
-      message["coarse_vs_fine"] = skinDifferenceJson(*c->coarse, *coarseX, *fine, done->x);
-      postCoarseFineDifference(*c->coarse, *coarseX, *fine, done->x);
-    }
-    reply(std::move(message), nullptr);
+    const JobReport report = [this](json message) { reply(std::move(message), nullptr); };
+    // Same case file as the coarse model: same frame and pivots.
+    std::optional<FineSolve> solved = runFineJob(job, service_.cases(), c->id, c->plan(poses), cancel, report);
+    if (solved) publishFine(job, c, std::move(poses), std::move(*solved));
   } catch (const std::exception& e) {
     reply({{"type", "job_failed"}, {"job", job}, {"message", std::string("the fine job failed: ") + e.what()}}, nullptr);
   }
+}
+
+// The newest fine result of the session (for exports), compared with the preview of the same poses.
+void PlanningSession::publishFine(long long job, const std::shared_ptr<OpenCase>& c, Poses poses, FineSolve solved) {
+  auto done = std::make_shared<FineResult>(FineResult{job, c->id, solved.model, std::move(solved.x), poses});
+  std::shared_ptr<const Eigen::Matrix3Xd> coarseX;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    fine_ = done;
+    if (c->previewPoses == poses) coarseX = c->previewX;
+  }
+  json message = {{"type", "job_done"}, {"job", job}, {"case", c->id}, {"figures", std::move(solved.figures)}};
+  if (coarseX) {
+    message["coarse_vs_fine"] = skinDifferenceJson(*c->coarse, *coarseX, *done->model, done->x);
+    postCoarseFineDifference(*c->coarse, *coarseX, *done->model, done->x);
+  }
+  reply(std::move(message), nullptr);
 }
 
 void PlanningSession::cancel(MessageReader& r, const json& id) {
@@ -556,15 +530,7 @@ void PlanningSession::savePlan(MessageReader& r, const json& id) {
     poses = posesJson();
     current = poses_;
   }
-  // The world-frame plan beside the anatomical poses, so that `orthosim solve` and `render` can
-  // use a saved plan too (docs/scene-format.md "plan").
-  json world = json::object();
-  for (const auto& [fragment, motion] : c->plan(current)) {
-    const Eigen::Vector3d deg = motion.rotation * 180.0 / M_PI;
-    world[fragment] = {{"translation_mm", vec(motion.translation)}, {"rotation_deg", vec(deg)}, {"center_mm", vec(motion.center)}};
-  }
-  const json plan = {{"format", kPlanFormat}, {"case", c->id}, {"name", name}, {"poses", poses}, {"plan", world}};
-  service_.plans().save(c->id, name, plan);
+  service_.plans().save(c->id, name, savedPlanJson(c->id, name, poses, c->plan(current)));
   reply({{"type", "saved"}, {"case", c->id}, {"name", name}}, id);
 }
 
@@ -573,19 +539,8 @@ void PlanningSession::loadPlan(MessageReader& r, const json& id) {
   const std::string name = r.string("name");
   const bool previewAfter = r.boolean("preview", true);
   r.rejectUnknown();
-  const json plan = service_.plans().load(c->id, name);
-  Poses loaded;
-  try {
-    MessageReader p(plan, "");
-    if (p.string("format") != kPlanFormat) p.fail("bad_plan", "unknown plan format", "format");
-    p.string("case");
-    p.string("name");
-    p.has("plan");
-    loaded = readPoses(p.object("poses"), *c);
-    p.rejectUnknown();
-  } catch (const ProtocolError& e) {
-    throw ProtocolError("bad_plan", "saved plan '" + name + "' is invalid: " + e.what(), "/name");
-  }
+  const Poses loaded = readSavedPlan(service_.plans().load(c->id, name), name,
+                                     [&](MessageReader poses) { return readPoses(poses, *c); });
   json poses;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -600,12 +555,10 @@ void PlanningSession::loadPlan(MessageReader& r, const json& id) {
 
 void PlanningSession::exportSkin(MessageReader& r, const json& id) {
   const std::shared_ptr<OpenCase> c = requireOpen();
-  std::string format = r.string("format");
+  const std::string requested = r.string("format");
   const std::string which = r.has("result") ? r.string("result") : "preview";
   r.rejectUnknown();
-  std::transform(format.begin(), format.end(), format.begin(), [](unsigned char ch) { return std::tolower(ch); });
-  if (format != "stl" && format != "obj" && format != "ply")
-    throw ProtocolError("bad_value", "/format: '" + format + "' is not one of stl, obj, ply", "/format");
+  const std::string format = skinExportFormat(requested);
   std::shared_ptr<const CaseModel> model;
   std::shared_ptr<const Eigen::Matrix3Xd> x;
   {
@@ -630,11 +583,11 @@ void PlanningSession::exportSkin(MessageReader& r, const json& id) {
   work_.submit(
       [self, model, x, format, which, caseId = c->id, id](const std::atomic<bool>&) {
         try {
-          const std::string bytes = exportSurfaceBytes(model->deformedSkin(*x), format);
-          const std::string type = format == "stl" ? "model/stl" : format == "obj" ? "model/obj" : "application/x-ply";
-          const std::string fileName = caseId + "-" + which + "." + format;
-          const std::size_t size = bytes.size();
-          const std::string exportId = self->service_.exports().add(fileName, type, bytes);
+          SkinExport file = skinExportFile(*model, *x, caseId, which, format);
+          const std::string fileName = file.fileName;
+          const std::size_t size = file.bytes.size();
+          const std::string exportId =
+              self->service_.exports().add(std::move(file.fileName), std::move(file.contentType), std::move(file.bytes));
           self->reply({{"type", "exported"},
                        {"format", format},
                        {"result", which},

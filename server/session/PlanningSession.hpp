@@ -13,6 +13,7 @@
 #include <string>
 
 #include "session/AnatomicalPose.hpp"
+#include "session/FineJob.hpp"
 #include "session/MessageReader.hpp"
 #include "session/PlanningService.hpp"
 #include "session/SerialWork.hpp"
@@ -67,6 +68,8 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
                   const nlohmann::json& id, const std::atomic<bool>& cancel);
   void runFine(long long job, const std::shared_ptr<OpenCase>& c, std::map<std::string, AnatomicalPose> poses,
                const std::atomic<bool>& cancel);
+  void publishFine(long long job, const std::shared_ptr<OpenCase>& c, std::map<std::string, AnatomicalPose> poses,
+                   FineSolve solved);
   nlohmann::json posesJson() const;  // with mutex_ held
   nlohmann::json caseJson(const OpenCase& c) const;
 

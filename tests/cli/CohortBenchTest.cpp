@@ -1,4 +1,4 @@
-// `orthosim bench --cohort` in its small CI form: two patients, small meshes, no contact. The table
+// `orthosim bench cohort` in its small CI form: two patients, small meshes, no contact. The table
 // has a row per patient with finite figures, fine is at least as accurate as coarse within 1 mm,
 // the soft-to-hard ratios are computed, and the plot and JSON are written. The full cohort (ten
 // patients, product meshes) takes minutes and runs by hand (README). The skin simplification does
@@ -11,9 +11,12 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 #include <unistd.h>
 
 #include "TestData.hpp"
+#include "eval/CohortJson.hpp"
 #include "render/PngFile.hpp"
 
 namespace fs = std::filesystem;
@@ -32,7 +35,7 @@ class CohortBench : public ::testing::Test {
   int run(const std::string& args) {
     // One BLAS thread: timings are not checked here, and on a loaded machine two spinning OpenBLAS
     // threads slow the solves several-fold.
-    const std::string cmd = "OPENBLAS_NUM_THREADS=1 " + std::string(ORTHOSIM_CLI) + " bench --cohort " + args + " > " + (dir_ / "out.txt").string() +
+    const std::string cmd = "OPENBLAS_NUM_THREADS=1 " + std::string(ORTHOSIM_CLI) + " bench cohort " + args + " > " + (dir_ / "out.txt").string() +
                             " 2> " + (dir_ / "err.txt").string();
     return WEXITSTATUS(std::system(cmd.c_str()));
   }
@@ -64,6 +67,20 @@ TEST_F(CohortBench, TwoPatientsTablePlotAndRatios) {
   std::ifstream in(json);
   const nlohmann::json j = nlohmann::json::parse(in);
   ASSERT_EQ(j["patients"].size(), 2u);
+  // The format: the writer's schema version, and the fields of the committed snapshot that the
+  // page shows (web/cohort/cohort.json, test web.AccuracyReport), so a changed format is noticed.
+  EXPECT_EQ(j["schema_version"], kCohortReportSchemaVersion);
+  std::ifstream committedFile(std::string(ORTHOSIM_SOURCE_DIR) + "/web/cohort/cohort.json");
+  const nlohmann::json committed = nlohmann::json::parse(committedFile);
+  const auto keys = [](const nlohmann::json& o) {
+    std::vector<std::string> k;
+    for (const auto& item : o.items()) k.push_back(item.key());
+    return k;
+  };
+  EXPECT_EQ(keys(j), keys(committed));
+  EXPECT_EQ(keys(j["patients"][0]), keys(committed["patients"][0]));
+  for (const char* run : {"coarse", "fine"}) EXPECT_EQ(keys(j["patients"][0][run]), keys(committed["patients"][0][run])) << run;
+  EXPECT_EQ(keys(j["patients"][0]["ratios_fine"][0]), keys(committed["patients"][0]["ratios_fine"][0]));
   for (const auto& p : j["patients"]) {
     SCOPED_TRACE(p["id"].get<std::string>());
     for (const char* res : {"coarse", "fine"}) {

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "TestData.hpp"
+#include "eval/RealFace.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "scene/CaseModel.hpp"
@@ -40,39 +41,11 @@ class RealFaceCase : public ::testing::Test {
     if (!dir_.empty()) fs::remove_all(dir_);
   }
 
-  // The case file as a user would write it, pointing into ../shared (never copied).
+  // The case file as a user would write it, pointing into ../shared (never copied): the one the
+  // cohort bench measures the face's ratios on (eval/RealFace).
   CaseSpec writeCase(const nlohmann::json& plan) {
-    const auto f = [](const char* name) { return (kFace / name).string(); };
-    const nlohmann::json c = {
-        {"name", "artisynth face"},
-        {"frame", {{"anterior", {-1, 0, 0}}, {"superior", {0, 0, 1}}, {"right", {0, 1, 0}}}},
-        {"tissue", {{"node", f("face_volume.node")}, {"ele", f("face_volume.ele")}, {"skin", f("face_surface.obj")}}},
-        {"bones",
-         {{{"name", "midface"}, {"surface", f("maxilla.obj")}, {"nodes", f("fixed_to_skull.txt")}, {"derive", true},
-           {"candidates", f("deep_surface.txt")}, {"bond_distance_mm", 2.0}, {"fixed", true}},
-          {{"name", "mandible"}, {"surface", f("mandible.obj")}, {"nodes", f("attached_to_mandible.txt")}}}},
-        // Read off maxilla.obj: incisor tip at z 99 mm, so the apex about 23 mm above it; the
-        // palate's back end; the first molars.
-        {"landmarks",
-         {{"upper_incisor_apex", {52, 0, 122}}, {"PNS", {106.5, 0, 123.6}}, {"upper_molar_left", {80, -25, 103}},
-          {"upper_molar_right", {80, 25, 103}}}},
-        {"cuts", {{{"template", "le_fort_1"}, {"bone", "midface"}}}},
-        // Lips and cheeks slide on the teeth of both jaws.
-        {"contact", {{{"bones", {"midface", "mandible"}}, {"range_mm", 15}}}},
-        {"plan", plan}};
-    std::ofstream(dir_ / "case.json") << c.dump(2);
+    std::ofstream(dir_ / "case.json") << realFaceCaseJson(kFace, plan).dump(2);
     return loadCaseFile((dir_ / "case.json").string());
-  }
-
-  // Most anterior (smallest x) midline skin vertex in a height band.
-  static int anteriorMost(const SurfaceMesh& skin, double zLo, double zHi) {
-    int best = -1;
-    for (int i = 0; i < skin.numVertices(); ++i) {
-      const Eigen::Vector3d p = skin.vertices.col(i);
-      if (std::abs(p.y()) > 4 || p.z() < zLo || p.z() > zHi) continue;
-      if (best < 0 || p.x() < skin.vertices(0, best)) best = i;
-    }
-    return best;
   }
 
   fs::path dir_;
@@ -137,12 +110,12 @@ TEST_F(RealFaceCase, LeFortOneAdvancementMovesTheUpperLipAndLittleElse) {
   const SurfaceMesh moved = m.deformedSkin(r.state.x);
   ASSERT_TRUE(moved.vertices.allFinite());
   EXPECT_LT((rest.vertices - m.tissue.skin.vertices).cwiseAbs().maxCoeff(), 1e-9);
-  const int nose = anteriorMost(rest, 0, 1e9);                       // pronasale
-  const int chin = anteriorMost(rest, 50, 70);                       // soft pogonion
+  const int nose = anteriorMostMidlineVertex(rest, 0, 1e9);  // pronasale
+  const int chin = anteriorMostMidlineVertex(rest, 50, 70);  // soft pogonion
   const auto forward = [&](int i) { return (rest.vertices(0, i) - moved.vertices(0, i)) / advance; };
   // Upper lip: the most anterior midline point between the nose tip and 25 mm below it.
   const double zNose = rest.vertices(2, nose);
-  const int lip = anteriorMost(rest, zNose - 35, zNose - 15);
+  const int lip = anteriorMostMidlineVertex(rest, zNose - 35, zNose - 15);
   ASSERT_GE(lip, 0);
   std::cout << "Le Fort I +" << advance << " mm: upper lip " << forward(lip) << ", nose tip " << forward(nose)
             << ", chin " << forward(chin) << " of the advancement\n";
@@ -159,7 +132,8 @@ TEST_F(RealFaceCase, MandibularSetbackMovesTheChinWithTheBone) {
   const SolveResult r = solveScene(model);
   ASSERT_TRUE(r.converged) << r.error;
   const SurfaceMesh rest = m.deformedSkin(m.scene.mesh.rest), moved = m.deformedSkin(r.state.x);
-  const int chin = anteriorMost(rest, 50, 70), nose = anteriorMost(rest, 0, 1e9);  // soft pogonion, pronasale
+  const int chin = anteriorMostMidlineVertex(rest, 50, 70);  // soft pogonion
+  const int nose = anteriorMostMidlineVertex(rest, 0, 1e9);  // pronasale
   const double c = (moved.vertices(0, chin) - rest.vertices(0, chin)) / setback;
   const double n = (moved.vertices(0, nose) - rest.vertices(0, nose)) / setback;
   std::cout << "setback " << setback << " mm: chin " << c << ", nose " << n << "\n";

@@ -79,17 +79,17 @@ TEST(JobQueue, BoundedCancellableAndOwned) {
   std::atomic<int> started{0}, cancelled{0}, dropped{0};
   JobQueue jobs(1, 2);
   // Runs until cancelled; a job never cancelled ends at the deadline without counting itself.
-  auto run = [&](const std::atomic<bool>& cancel) {
+  auto run = [&](long long, const std::atomic<bool>& cancel) {
     ++started;
     if (waitUntil([&] { return cancel.load(); }, kDeadline)) ++cancelled;
   };
-  const auto a = jobs.submit("s1", run, [&] { ++dropped; });
+  const auto a = jobs.submit("s1", run, [&](long long) { ++dropped; });
   ASSERT_TRUE(a);
   ASSERT_TRUE(waitUntil([&] { return started > 0; }, kDeadline)) << "the first job never started";
-  const auto b = jobs.submit("s1", run, [&] { ++dropped; });
-  const auto c = jobs.submit("s2", run, [&] { ++dropped; });
+  const auto b = jobs.submit("s1", run, [&](long long) { ++dropped; });
+  const auto c = jobs.submit("s2", run, [&](long long) { ++dropped; });
   ASSERT_TRUE(b && c);
-  EXPECT_FALSE(jobs.submit("s3", run, [] {})) << "two waiting is the capacity";
+  EXPECT_FALSE(jobs.submit("s3", run, [](long long) {})) << "two waiting is the capacity";
   EXPECT_EQ(jobs.position(*b), 0);
   EXPECT_EQ(jobs.position(*c), 1);
   EXPECT_EQ(jobs.running(), 1);
@@ -102,7 +102,7 @@ TEST(JobQueue, BoundedCancellableAndOwned) {
   jobs.shutdown();
   EXPECT_EQ(cancelled, 2);
   EXPECT_EQ(jobs.running(), 0);
-  EXPECT_FALSE(jobs.submit("s1", run, [] {})) << "no job after shutdown";
+  EXPECT_FALSE(jobs.submit("s1", run, [](long long) {})) << "no job after shutdown";
 }
 
 TEST(PlanStore, SavesAtomicallyListsAndLoads) {

@@ -1,0 +1,27 @@
+#include "session/SkinExport.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+#include "mesh/SurfaceImport.hpp"
+#include "session/ProtocolError.hpp"
+
+namespace orthosim::server {
+
+std::string skinExportFormat(std::string format) {
+  std::transform(format.begin(), format.end(), format.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  if (format != "stl" && format != "obj" && format != "ply")
+    throw ProtocolError("bad_value", "/format: '" + format + "' is not one of stl, obj, ply", "/format");
+  return format;
+}
+
+SkinExport skinExportFile(const CaseModel& model, const Eigen::Matrix3Xd& x, const std::string& caseId,
+                      const std::string& result, const std::string& format) {
+  SkinExport e;
+  e.bytes = exportSurfaceBytes(model.deformedSkin(x), format);
+  e.contentType = format == "stl" ? "model/stl" : format == "obj" ? "model/obj" : "application/x-ply";
+  e.fileName = caseId + "-" + result + "." + format;
+  return e;
+}
+
+}  // namespace orthosim::server
