@@ -189,7 +189,11 @@ class Newton {
       coupling_.step(dz, alpha, trial);
       const double e = model_.totalEnergy(trial);
       if (!std::isfinite(e)) continue;
-      if (e <= e0 + 1e-4 * alpha * slope || (-slope < roundoff && residual <= 1e3 * model_.forceTolerance())) {
+      LineSearchTrial t{e0, e, alpha, slope, roundoff, residual, model_.forceTolerance()};
+      if (!lineSearchAccepts(t) && lineSearchNeedsTrialResidual(t)) {
+        t.trialResidual = maxNorm(coupling_.reduce(model_.totalGradient(trial), trial));
+      }
+      if (lineSearchAccepts(t)) {
         x = std::move(trial);
         return alpha;
       }
@@ -207,6 +211,21 @@ class Newton {
 };
 
 }  // namespace
+
+bool lineSearchAccepts(const LineSearchTrial& t) {
+  // Along a direction that does not descend (H not positive definite, or rounding at r ~ 0) no
+  // small enough step decreases the energy: refuse it, whatever the energies say.
+  if (!(t.slope < 0) || !std::isfinite(t.energy)) return false;
+  if (t.energy <= t.e0 + 1e-4 * t.alpha * t.slope) return true;
+  if (!(-t.slope < t.roundoff)) return false;
+  if (t.residual <= kRoundoffEscapeResidual * t.forceTolerance) return true;
+  return t.alpha == 1.0 && t.trialResidual <= 0.5 * t.residual;  // false for NaN (not evaluated)
+}
+
+bool lineSearchNeedsTrialResidual(const LineSearchTrial& t) {
+  return t.alpha == 1.0 && t.slope < 0 && -t.slope < t.roundoff && std::isfinite(t.energy) &&
+         t.residual > kRoundoffEscapeResidual * t.forceTolerance;
+}
 
 SubstepReport solveSubstep(Model& model, const BoundaryTargets& targets, const SolverSettings& settings,
                            SimState& state, SolveTimings& timings, const SolveControl& control) {
