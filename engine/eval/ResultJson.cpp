@@ -9,19 +9,25 @@ constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
 
 nlohmann::json vec3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-// A number JSON can carry: non-finite values become null rather than invalid JSON.
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json num(double v) { return jsonNumber(v); }
 
 }  // namespace
 
-nlohmann::json resultToJson(const Model& model, const SolveResult& r) {
-  using nlohmann::json;
-  json out;
+nlohmann::json jsonNumber(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json solveOutcomeJson(const SolveResult& r) {
+  nlohmann::json out;
   out["converged"] = r.converged;
   if (!r.converged) out["error"] = r.error;
-  out["load_fraction"] = r.loadFraction;
+  out["load_fraction"] = jsonNumber(r.loadFraction);
+  out["residual_n"] = jsonNumber(r.residual);
+  return out;
+}
+
+nlohmann::json resultToJson(const Model& model, const SolveResult& r) {
+  using nlohmann::json;
+  json out = solveOutcomeJson(r);
   out["energy_nmm"] = num(r.energy);
-  out["residual_n"] = num(r.residual);
   out["min_det_f"] = num(r.minDetF);
   out["newton_iterations"] = r.iterations;
   out["chord_iterations"] = r.chordIterations;

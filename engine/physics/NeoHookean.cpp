@@ -14,6 +14,16 @@ using Vector9d = Eigen::Matrix<double, 9, 1>;
 
 Vector9d vec(const Eigen::Matrix3d& M) { return Eigen::Map<const Vector9d>(M.data()); }
 
+// det F where the stress is defined: log J of an inverted or flat element would be NaN (or -inf),
+// and a NaN force or stiffness would only be noticed far from where it was made.
+double positiveDet(const Eigen::Matrix3d& F, const char* caller) {
+  const double J = F.determinant();
+  if (!(J > 0.0))
+    throw std::domain_error(std::string("NeoHookean::") + caller + ": det F = " + std::to_string(J) +
+                            " is not positive (an inverted or flat element has no stress; its energy is +infinity)");
+  return J;
+}
+
 }  // namespace
 
 NeoHookean NeoHookean::fromYoungPoisson(double E, double nu) {
@@ -34,25 +44,33 @@ double NeoHookean::energy(const Eigen::Matrix3d& F) const {
 }
 
 Eigen::Matrix3d NeoHookean::stress(const Eigen::Matrix3d& F) const {
-  const double J = F.determinant();
+  const double J = positiveDet(F, "stress");
   const Eigen::Matrix3d FinvT = F.inverse().transpose();
   return mu * F + (lambda * std::log(J) - mu) * FinvT;
 }
 
 // dP = mu dF + lambda (G:dF) G + c G dF^T G, with G = F^-T and c = mu - lambda log J.
 Matrix9d NeoHookean::stressDerivative(const Eigen::Matrix3d& F, bool projectToPSD) const {
-  const double J = F.determinant();
+  const double J = positiveDet(F, "stressDerivative");
   const double c = mu - lambda * std::log(J);
   const Eigen::Matrix3d G = F.inverse().transpose();
 
   bool needsProjection = false;
   if (projectToPSD) {
     // Eigenvalues in the singular-value frame: mu +- c/(s_i s_j) for the six off-diagonal modes and
-    // those of mu I + c diag(1/s^2) + lambda s^-1 s^-T for the three diagonal ones. A cheap bound on
-    // the singular values tells whether any can be negative; most elements skip the SVD.
+    // those of K = D + lambda w w^T, D = diag(mu + c/s_i^2), w = 1/s, for the three diagonal ones.
+    // A test on the singular values (with a margin for rounding) tells whether any can be negative;
+    // most elements skip the SVD. With lambda >= 0, D > 0 suffices. With lambda < 0 (Poisson's ratio
+    // below 0) w w^T lowers K: then K > 0 exactly when D > 0 and 1 + lambda w^T D^-1 w > 0, where
+    // w_i^2 / d_i = 1 / (mu s_i^2 + c).
     Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>().computeDirect(F.transpose() * F, Eigen::EigenvaluesOnly).eigenvalues();
     const double s0 = std::sqrt(std::max(ev[0], 0.0)), s1 = std::sqrt(std::max(ev[1], 0.0));
     needsProjection = std::abs(c) > 0.999 * mu * s0 * s1 || (c < 0 && -c > 0.999 * mu * s0 * s0);
+    if (!needsProjection && lambda < 0) {
+      double wDw = 0.0;
+      for (int i = 0; i < 3; ++i) wDw += 1.0 / (mu * ev[i] + c);
+      needsProjection = !(1.0 + lambda * wDw > 1e-3);
+    }
   }
 
   if (!needsProjection) {

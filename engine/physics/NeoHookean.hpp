@@ -17,11 +17,12 @@ struct NeoHookean {
 
   // +infinity when det F <= 0 (an inverted element has no finite energy).
   double energy(const Eigen::Matrix3d& F) const;
-  // First Piola-Kirchhoff stress dPsi/dF; requires det F > 0.
+  // First Piola-Kirchhoff stress dPsi/dF. Throws std::domain_error when det F <= 0 (not NaN).
   Eigen::Matrix3d stress(const Eigen::Matrix3d& F) const;
   // d^2 Psi / dF^2. With projectToPSD the eigenvalues are clamped at zero using the analytic
   // eigensystem in the singular-value frame of F, so the element Hessian stays positive
-  // semi-definite far from equilibrium (compression, large rotation).
+  // semi-definite far from equilibrium (compression, large rotation), for every Poisson's ratio
+  // fromYoungPoisson accepts (lambda < 0 included). Throws std::domain_error when det F <= 0.
   Matrix9d stressDerivative(const Eigen::Matrix3d& F, bool projectToPSD) const;
 };
 

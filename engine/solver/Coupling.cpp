@@ -116,6 +116,19 @@ Coupling::Coupling(const Scene& scene) : rest_(scene.mesh.rest) {
   }
   if (!held)
     throw std::invalid_argument("nothing holds the tissue: no fixed nodes and no tissue bonded to a prescribed fragment");
+
+  std::vector<double> inertia(nf, 0.0);  // sum w |X - o|^2
+  for (int i = 0; i < n; ++i)
+    for (const auto& t : skin[i]) inertia[t.fragment] += t.weight * (rest_.col(i) - origin_[t.fragment]).squaredNorm();
+  rotationLength_.assign(nf, 0.0);
+  dofLength_ = Eigen::VectorXd::Ones(numReducedDofs());
+  for (int f : freeFragments_) {
+    double L = std::sqrt(inertia[f] / weightSum[f]);
+    if (!(L > 0)) L = scene.mesh.meanEdgeLength();
+    if (!(L > 0)) L = 1.0;
+    rotationLength_[f] = L;
+    dofLength_.segment<3>(fragmentDof_[f] + 3).setConstant(L);
+  }
 }
 
 bool Coupling::dependsOnFreeFragment(int node) const {
@@ -166,6 +179,14 @@ void Coupling::step(const Eigen::VectorXd& dz, double alpha, SimState& s) const 
     pose.b = p - pose.R * origin_[f];
   }
   if (!freeFragments_.empty()) updateConstrainedNodes(s);
+}
+
+double Coupling::forceNorm(const Eigen::VectorXd& r) const {
+  return r.size() ? r.cwiseQuotient(dofLength_).lpNorm<Eigen::Infinity>() : 0.0;
+}
+
+double Coupling::stepNorm(const Eigen::VectorXd& dz) const {
+  return dz.size() ? dz.cwiseProduct(dofLength_).lpNorm<Eigen::Infinity>() : 0.0;
 }
 
 Eigen::VectorXd Coupling::reduce(const Eigen::Matrix3Xd& g, const SimState& s) const {

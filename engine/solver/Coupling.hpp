@@ -42,6 +42,16 @@ class Coupling {
   // First of the 6 reduced DoFs (3 position, 3 rotation) of a free fragment; -1 if prescribed.
   int fragmentDof(int fragment) const { return fragmentDof_[fragment]; }
   const Eigen::Vector3d& fragmentOrigin(int fragment) const { return origin_[fragment]; }
+  // The length L (mm) that puts a free fragment's rotation DoFs in the units of the others: its
+  // radius of gyration about its origin, sqrt(sum w |X - o|^2 / sum w) over its nodes at rest (blend
+  // weights as masses); the mesh's mean edge length when its nodes all lie at the origin. 0 for a
+  // prescribed fragment.
+  double rotationLength(int fragment) const { return rotationLength_[fragment]; }
+  // Max-norms in one unit for every reduced DoF: a residual in N (a free fragment's torque / L) and
+  // a step in mm (its rotation * L). This is the diagonal change of variables theta' = L theta,
+  // which leaves the Newton step itself unchanged; only what "small" means changes.
+  double forceNorm(const Eigen::VectorXd& r) const;
+  double stepNorm(const Eigen::VectorXd& dz) const;
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   // Reduced index of node component (node, c), or -1 when it is constrained.
@@ -76,6 +86,8 @@ class Coupling {
   std::vector<int> fragmentDof_;
   std::vector<int> freeFragments_;
   std::vector<Eigen::Vector3d, Eigen::aligned_allocator<Eigen::Vector3d>> origin_;
+  std::vector<double> rotationLength_;
+  Eigen::VectorXd dofLength_;  // per reduced DoF: L for free fragments' rotations, 1 otherwise
   int numFreeNodeDofs_ = 0;
   std::vector<std::string> warnings_;
 };

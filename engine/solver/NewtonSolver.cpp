@@ -19,8 +19,6 @@ struct Stopwatch {
   ~Stopwatch() { total += std::chrono::duration<double>(Clock::now() - start).count(); }
 };
 
-double maxNorm(const Eigen::VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
-
 class Newton {
  public:
   Newton(Model& model, const SolverSettings& settings, SolveTimings& timings, const SolveControl& control, bool atRest)
@@ -44,7 +42,7 @@ class Newton {
         g = model_.totalGradient(x);
         r = coupling_.reduce(g, x);
       }
-      rep.residual = maxNorm(r);
+      rep.residual = coupling_.forceNorm(r);  // N: a free fragment's torque / its length
       if (!std::isfinite(rep.residual)) return fail(rep, "the residual is not finite");
       // Error left after the last step: far below it after a Newton step (quadratic convergence);
       // step * rho / (1 - rho) after a chord step, which converges linearly with rate rho.
@@ -79,7 +77,7 @@ class Newton {
         continue;
       }
       if (lastAlpha <= 0) return fail(rep, "the line search found no decrease of the energy");
-      lastStep = lastAlpha * maxNorm(dz);
+      lastStep = lastAlpha * coupling_.stepNorm(dz);  // mm: a free fragment's rotation * its length
       lastResidual = rep.residual;
       if (std::getenv("ORTHOSIM_TRACE"))
         std::fprintf(stderr, "  %s %d: residual %.3e step %.3e alpha %.3g\n", chord ? "chord " : "newton", it,
@@ -138,7 +136,7 @@ class Newton {
       g = model_.totalGradient(x);
       rhs = -(coupling_.reduce(g, x) + model_.system().hessianTimes(x, dxc, settings_.hessian == HessianMode::Projected));
     }
-    if (dxc.isZero(0.0) && maxNorm(rhs) <= model_.forceTolerance()) {  // nothing moves: no prediction
+    if (dxc.isZero(0.0) && coupling_.forceNorm(rhs) <= model_.forceTolerance()) {  // nothing moves: no prediction
       x = std::move(moved);  // the poses of node-less fragments (contact surfaces) still change
       step = 0.0;
       return true;
@@ -160,7 +158,7 @@ class Newton {
       coupling_.step(dz, alpha, trial);
       if (std::isfinite(model_.totalEnergy(trial))) {
         x = std::move(trial);
-        step = alpha * maxNorm(dz);
+        step = alpha * coupling_.stepNorm(dz);
         return true;
       }
     }
@@ -189,7 +187,11 @@ class Newton {
       coupling_.step(dz, alpha, trial);
       const double e = model_.totalEnergy(trial);
       if (!std::isfinite(e)) continue;
-      if (e <= e0 + 1e-4 * alpha * slope || (-slope < roundoff && residual <= 1e3 * model_.forceTolerance())) {
+      LineSearchTrial t{e0, e, alpha, slope, roundoff, residual, model_.forceTolerance()};
+      if (!lineSearchAccepts(t) && lineSearchNeedsTrialResidual(t)) {
+        t.trialResidual = coupling_.forceNorm(coupling_.reduce(model_.totalGradient(trial), trial));
+      }
+      if (lineSearchAccepts(t)) {
         x = std::move(trial);
         return alpha;
       }
@@ -207,6 +209,21 @@ class Newton {
 };
 
 }  // namespace
+
+bool lineSearchAccepts(const LineSearchTrial& t) {
+  // Along a direction that does not descend (H not positive definite, or rounding at r ~ 0) no
+  // small enough step decreases the energy: refuse it, whatever the energies say.
+  if (!(t.slope < 0) || !std::isfinite(t.energy)) return false;
+  if (t.energy <= t.e0 + 1e-4 * t.alpha * t.slope) return true;
+  if (!(-t.slope < t.roundoff)) return false;
+  if (t.residual <= kRoundoffEscapeResidual * t.forceTolerance) return true;
+  return t.alpha == 1.0 && t.trialResidual <= 0.5 * t.residual;  // false for NaN (not evaluated)
+}
+
+bool lineSearchNeedsTrialResidual(const LineSearchTrial& t) {
+  return t.alpha == 1.0 && t.slope < 0 && -t.slope < t.roundoff && std::isfinite(t.energy) &&
+         t.residual > kRoundoffEscapeResidual * t.forceTolerance;
+}
 
 SubstepReport solveSubstep(Model& model, const BoundaryTargets& targets, const SolverSettings& settings,
                            SimState& state, SolveTimings& timings, const SolveControl& control) {

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cstdint>
+#include <exception>
 #include <stdexcept>
 
 namespace orthosim {
@@ -155,10 +156,20 @@ void ReducedSystem::assemble(const SimState& state, const Eigen::Matrix3Xd& g, b
       for (int c = 0; c < 12; ++c)
         if (index[12 * r + c] >= 0) values[index[12 * r + c]] += He(r, c);
   };
+  // An exception must not leave a parallel region (std::terminate): keep the first, throw it after.
+  std::exception_ptr error;
   for (const auto& color : colors_) {
     const int count = static_cast<int>(color.size());
 #pragma omp parallel for schedule(static)
-    for (int k = 0; k < count; ++k) scatterSimple(color[k]);
+    for (int k = 0; k < count; ++k) {
+      try {
+        scatterSimple(color[k]);
+      } catch (...) {
+#pragma omp critical(orthosim_reduced_assembly_error)
+        if (!error) error = std::current_exception();
+      }
+    }
+    if (error) std::rethrow_exception(error);
   }
   for (int slot : serialSlots_) scatterSimple(slot);
   for (const auto& ge : general_) {

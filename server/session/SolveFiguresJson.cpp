@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "eval/ResultJson.hpp"
+
 namespace orthosim::server {
 using nlohmann::json;
 namespace {
-
-double finiteOr0(double v) { return std::isfinite(v) ? v : 0.0; }
 
 json anatomical(const Eigen::Vector3d& d, const AnatomicalFrame& f) {
   return {{"anterior_mm", d.dot(f.anterior)}, {"superior_mm", d.dot(f.superior)}, {"right_mm", d.dot(f.right)},
@@ -21,12 +21,10 @@ json solveFiguresJson(const CaseModel& model, const SkinFigureProbe& probe, cons
   const SkinFigures skin = probe.figures(model, r.state.x);
   json landmarks = json::object();
   for (const LandmarkMotion& l : skin.landmarks) landmarks[l.name] = anatomical(l.displacement, frame);
-  json out = {{"converged", r.converged},
-              {"load_fraction", r.loadFraction},
-              {"solve_s", r.timings.total},
+  json out = solveOutcomeJson(r);  // converged, error, load_fraction, residual_n: as in result.json
+  out.update({{"solve_s", r.timings.total},
               {"iterations", r.iterations},
               {"substeps", static_cast<int>(r.substeps.size())},
-              {"residual_n", finiteOr0(r.residual)},
               {"max_skin_displacement_mm", skin.maxDisplacementMm},
               {"max_skin_displacement_at_mm", {skin.maxAt.x(), skin.maxAt.y(), skin.maxAt.z()}},
               {"mean_skin_displacement_mm", skin.meanDisplacementMm},
@@ -34,8 +32,7 @@ json solveFiguresJson(const CaseModel& model, const SkinFigureProbe& probe, cons
               {"resolution", resolutionName(model.resolution)},
               {"nodes", model.scene.mesh.numNodes()},
               {"tetrahedra", model.scene.mesh.numTets()},
-              {"warnings", r.warnings}};
-  if (!r.converged) out["error"] = r.error;
+              {"warnings", r.warnings}});
   return out;
 }
 

@@ -4,6 +4,8 @@
 
 #include <Eigen/Dense>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include "mesh/BoxMesh.hpp"
 #include "physics/NeoHookean.hpp"
@@ -94,6 +96,72 @@ TEST(NeoHookean, ProjectionClampsNegativeEigenvaluesOnly) {
   EXPECT_GT(projectedCases, 10);  // the sample reaches the indefinite regime
 }
 
+// Every Poisson's ratio fromYoungPoisson accepts, lambda < 0 (nu < 0) included: the projected
+// stiffness is the exact one with its negative eigenvalues clamped, so positive semi-definite. The
+// cheap test that skips the SVD once assumed lambda >= 0 and let 12 to 70 of these 2000 F through
+// with a negative eigenvalue for nu < 0.
+class NeoHookeanProjection : public ::testing::TestWithParam<double> {};
+
+TEST_P(NeoHookeanProjection, TwoThousandRandomFGiveAPositiveSemiDefiniteClampedHessian) {
+  const NeoHookean m = NeoHookean::fromYoungPoisson(0.1, GetParam());
+  std::mt19937 rng(5);
+  int indefinite = 0, wrong = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Eigen::Matrix3d F = randomF(rng, 0.7);
+    if (F.determinant() < 1e-3) continue;  // det F > 0 is required; keep away from flat elements
+    const Matrix9d exact = m.stressDerivative(F, false);
+    const Matrix9d proj = m.stressDerivative(F, true);
+    Eigen::SelfAdjointEigenSolver<Matrix9d> eig(exact), eigProj(proj);
+    const Matrix9d expected = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+    if (eigProj.eigenvalues().minCoeff() < -1e-12 * exact.norm()) ++indefinite;
+    if ((proj - expected).norm() > 1e-9 * (1 + exact.norm())) ++wrong;
+  }
+  EXPECT_EQ(indefinite, 0) << "nu = " << GetParam();
+  EXPECT_EQ(wrong, 0) << "nu = " << GetParam();
+}
+
+INSTANTIATE_TEST_SUITE_P(AcceptedPoissonRatios, NeoHookeanProjection,
+                         ::testing::Values(-0.9, -0.5, -0.2, 0.0, 0.3, 0.47, 0.499));
+
+// At rest with nu < 0 the stiffness is positive semi-definite and the projection leaves it alone.
+// Closed form: 0 for the three rotations (mu - c, c = mu), 2 mu + 3 lambda = 3 x bulk modulus > 0
+// for the volume change (lambda < 0 lowers it), 2 mu for the five shears.
+TEST(NeoHookean, NegativePoissonRatioAtRestIsPositiveSemiDefinite) {
+  const NeoHookean m = NeoHookean::fromYoungPoisson(0.1, -0.9);
+  ASSERT_LT(m.lambda, 0.0);
+  const Matrix9d exact = m.stressDerivative(Eigen::Matrix3d::Identity(), false);
+  EXPECT_LT((m.stressDerivative(Eigen::Matrix3d::Identity(), true) - exact).norm(), 1e-14);
+  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Matrix9d>(exact).eigenvalues();
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(ev[i], 0.0, 1e-14);
+  EXPECT_NEAR(ev[3], 2 * m.mu + 3 * m.lambda, 1e-14);
+  EXPECT_GT(ev[3], 0.0);
+  for (int i = 4; i < 9; ++i) EXPECT_NEAR(ev[i], 2 * m.mu, 1e-14);
+}
+
+// log J of an inverted or flat element: a clear error where the stress is asked for, not NaN.
+TEST(NeoHookean, StressOfAnInvertedOrFlatElementIsAnError) {
+  for (const double d : {-0.1, 0.0}) {
+    Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+    F(2, 2) = d;
+    for (int which = 0; which < 3; ++which) {
+      try {
+        if (which == 0) kTissue.stress(F);
+        if (which == 1) kTissue.stressDerivative(F, false);
+        if (which == 2) kTissue.stressDerivative(F, true);
+        ADD_FAILURE() << "no error for det F = " << d << " (" << which << ")";
+      } catch (const std::domain_error& e) {
+        EXPECT_NE(std::string(e.what()).find("det F = "), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("is not positive"), std::string::npos) << e.what();
+      }
+    }
+  }
+  // Just inside: finite.
+  Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+  F(2, 2) = 1e-6;
+  EXPECT_TRUE(kTissue.stress(F).allFinite());
+  EXPECT_TRUE(kTissue.stressDerivative(F, true).allFinite());
+}
+
 TEST(NeoHookean, CompressionMakesTheExactHessianIndefinite) {
   // Strong uniaxial compression: the closed-form antisymmetric mode mu - c/(s_i s_j) is negative.
   const Eigen::Matrix3d F = Eigen::Vector3d(0.4, 1.0, 1.0).asDiagonal();
@@ -158,6 +226,14 @@ TEST_F(ElementTest, ProjectedHessianIsPositiveSemiDefinite) {
     EXPECT_LT(exact.eigenvalues().minCoeff(), -1e-6);
     EXPECT_GT(proj.eigenvalues().minCoeff(), -1e-10 * proj.eigenvalues().maxCoeff());
   }
+}
+
+TEST_F(ElementTest, GradientOfAnInvertedElementIsAnError) {
+  Eigen::Matrix3Xd x = mesh.rest;
+  x.row(2) *= -1.0;  // mirrored: every element inverted
+  EXPECT_TRUE(std::isinf(energy.energy(x)));
+  EXPECT_THROW(energy.gradient(x), std::domain_error);
+  EXPECT_THROW(energy.elementHessian(0, x, true), std::domain_error);
 }
 
 TEST_F(ElementTest, TotalGradientSumsElements) {

@@ -5,6 +5,8 @@
 
 #include <Eigen/Dense>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include "mesh/BoxMesh.hpp"
 #include "solver/Model.hpp"
@@ -101,6 +103,22 @@ TEST_F(ReducedSystemTest, ReducedHessianMatchesFiniteDifferences) {
                          energyAt(*model, base, eb - ea) + energyAt(*model, base, -ea - eb)) / (4 * h * h);
       EXPECT_NEAR(H(a, b), fd, 1e-5 * (1 + std::abs(fd)) + 1e-14 * std::abs(e0) / (h * h)) << "entry " << a << ", " << b;
     }
+}
+
+// The stiffness of an inverted element is an error (NeoHookean::stressDerivative), and it reaches
+// the caller from inside the parallel assembly instead of terminating the process.
+TEST_F(ReducedSystemTest, AssemblingAnInvertedStateIsAnError) {
+  SimState inverted = base;
+  inverted.x.row(2) *= -1.0;  // mirrored: every element turned over
+  const Eigen::Matrix3Xd g = Eigen::Matrix3Xd::Zero(3, inverted.x.cols());
+  for (const bool project : {false, true}) {
+    try {
+      model->system().assemble(inverted, g, project);
+      ADD_FAILURE() << "no error";
+    } catch (const std::domain_error& e) {
+      EXPECT_NE(std::string(e.what()).find("det F"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST_F(ReducedSystemTest, HessianTimesMatchesDenseProduct) {
