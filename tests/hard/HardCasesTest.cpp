@@ -103,7 +103,7 @@ void expectValid(const Model& model, const SimState& start, const PlanTargets& t
     EXPECT_LT((r.state.fragments[f].R - want.R).cwiseAbs().maxCoeff(), 1e-12) << f;
     EXPECT_LT((r.state.fragments[f].b - want.b).cwiseAbs().maxCoeff(), 1e-9) << f;
   }
-  const double residual = maxNorm(model.coupling().reduce(model.totalGradient(r.state), r.state));
+  const double residual = model.coupling().forceNorm(model.coupling().reduce(model.totalGradient(r.state), r.state));
   EXPECT_LE(residual, model.forceTolerance());
 }
 
