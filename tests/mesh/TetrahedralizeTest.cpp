@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "math/Angles.hpp"
 #include "mesh/BoundaryFaces.hpp"
 #include "mesh/BoxMesh.hpp"
 #include "mesh/MeshQuality.hpp"
@@ -28,8 +29,6 @@ namespace orthosim {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr double kPi = 3.14159265358979323846;
 
 using Surface = SurfaceMesh;
 
