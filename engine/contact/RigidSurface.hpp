@@ -1,12 +1,12 @@
 #pragma once
 // A rigid surface (bone, teeth) for contact, in its fragment's rest frame: signed distance, closest
-// point and outward normal of any point, from a CGAL AABB tree built once. The sign comes from the
+// point and outward normal of any point, from an AABB tree built once. The sign comes from the
 // angle-weighted pseudo-normal of the closest feature (face, edge or vertex), which is exact for a
 // closed outward surface and right near an open but consistently oriented one (a cropped bone, or
 // a fragment's part of a bone cut by an osteotomy); a point nearest to the rim of an open surface
 // counts as outside.
-// Moving the fragment costs nothing: callers bring points into the rest frame. In orthosim_cgal;
-// no CGAL type here.
+// Moving the fragment costs nothing: callers bring points into the rest frame. The nearest point
+// comes from the engine's one point-to-surface query (mesh/SurfaceDistance).
 #include <Eigen/Core>
 #include <memory>
 

@@ -6,12 +6,11 @@
 #include <limits>
 #include <ostream>
 
+#include "math/Angles.hpp"
 #include "mesh/BoundaryFaces.hpp"
 
 namespace orthosim {
 namespace {
-
-constexpr double kDegPerRad = 57.29577951308232;
 
 // Interior dihedral angle at edge (i, j) of a tet, between its faces (i, j, k) and (i, j, l):
 // the angle between k and l seen along the edge.

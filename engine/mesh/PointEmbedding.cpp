@@ -9,41 +9,19 @@
 #include <stdexcept>
 #include <vector>
 
+#include "mesh/Barycentric.hpp"
+#include "mesh/BoundaryFaces.hpp"
+#include "mesh/SurfaceDistance.hpp"
+
 namespace orthosim {
 
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Closest point to p on triangle abc (Ericson, Real-Time Collision Detection, 5.1.5): by the
-// Voronoi region of p, so it never divides by a vanishing area.
-Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                  const Eigen::Vector3d& c) {
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Eigen::Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-  const Eigen::Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-  const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
-double distanceToBox(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).norm();
-}
-
-// Rest geometry of the tets and a uniform grid of their bounding boxes: cell c lists, in tet order,
-// every tet whose box overlaps it (CSR: items[start[c] .. start[c+1])).
+// Rest geometry of the tets and a uniform grid of their bounding boxes, to find the tet holding a
+// point: cell c lists, in tet order, every tet whose box overlaps it (CSR: items[start[c] ..
+// start[c+1])).
 class TetGrid {
  public:
   explicit TetGrid(const TetMesh& mesh) : mesh_(mesh) {
@@ -89,27 +67,11 @@ class TetGrid {
   }
 
   Eigen::Vector3d node(int e, int a) const { return mesh_.rest.col(mesh_.tets(a, e)); }
-  double cellSize() const { return h_; }
 
   Eigen::Vector4d barycentric(int e, const Eigen::Vector3d& p) const {
     const Eigen::Vector3d l = inverse_[e] * (p - node(e, 0));
     return Eigen::Vector4d(1.0 - l.sum(), l.x(), l.y(), l.z());
   }
-
-  // Distance from p to tet e, given p's barycentric coordinates there: the nearest point of a
-  // convex tet lies on a face that p sees, i.e. one whose opposite coordinate is negative.
-  double distance(int e, const Eigen::Vector3d& p, const Eigen::Vector4d& bary) const {
-    static const int faceOf[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-    double best = kInf;
-    for (int f = 0; f < 4; ++f)
-      if (bary[f] < 0)
-        best = std::min(best, (p - closestOnTriangle(p, node(e, faceOf[f][0]), node(e, faceOf[f][1]),
-                                                     node(e, faceOf[f][2])))
-                                  .norm());
-    return best == kInf ? 0.0 : best;
-  }
-
-  double boxDistance(int e, const Eigen::Vector3d& p) const { return distanceToBox(p, lo_.col(e), hi_.col(e)); }
 
   // The tet containing p (all coordinates >= -tolerance), or -1.
   int containing(const Eigen::Vector3d& p, double tolerance, Eigen::Vector4d& bary) const {
@@ -117,69 +79,11 @@ class TetGrid {
     const double margin = 1e-9 * h_;
     for (int s = start_[index(c.x(), c.y(), c.z())], t = start_[index(c.x(), c.y(), c.z()) + 1]; s < t; ++s) {
       const int e = items_[s];
-      if (boxDistance(e, p) > margin) continue;
+      if ((lo_.col(e) - p).cwiseMax(p - hi_.col(e)).cwiseMax(0.0).norm() > margin) continue;
       bary = barycentric(e, p);
       if (bary.minCoeff() >= -tolerance) return e;
     }
     return -1;
-  }
-
-  // The tet nearest to p among those within `limit` (-1 if none), searching rings of cells around
-  // p's cell until no unvisited tet can be nearer. Among tets equally near (p's nearest point is a
-  // shared edge or node) the one p is least outside of is taken: its extension bends least.
-  // `stamp` (numTets, owned by the thread) marks tets already measured for point `id`.
-  int nearest(const Eigen::Vector3d& p, double limit, int id, std::vector<int>& stamp, double& dist,
-              Eigen::Vector4d& bary) const {
-    const Eigen::Vector3i c = cellOf(p);
-    const double tie = 1e-9 * h_;
-    int best = -1;
-    double bestMin = -kInf;
-    dist = kInf;
-    auto visit = [&](int cell) {
-      for (int s = start_[cell]; s < start_[cell + 1]; ++s) {
-        const int e = items_[s];
-        if (stamp[e] == id) continue;
-        stamp[e] = id;
-        if (boxDistance(e, p) > std::min(dist, limit) + tie) continue;
-        const Eigen::Vector4d b = barycentric(e, p);
-        const double d = distance(e, p, b);
-        if (d > limit) continue;
-        if (d < dist - tie || (d <= dist + tie && b.minCoeff() > bestMin)) {
-          best = e;
-          dist = std::min(d, dist);
-          bestMin = b.minCoeff();
-          bary = b;
-        }
-      }
-    };
-    for (int k = 0;; ++k) {
-      const Eigen::Vector3i lo = (c.array() - k).max(0), hi = (c + Eigen::Vector3i::Constant(k)).cwiseMin(dims_ - Eigen::Vector3i::Ones());
-      for (int i = lo.x(); i <= hi.x(); ++i)
-        for (int j = lo.y(); j <= hi.y(); ++j) {
-          if (std::abs(i - c.x()) == k || std::abs(j - c.y()) == k) {
-            for (int z = lo.z(); z <= hi.z(); ++z) visit(index(i, j, z));
-          } else {
-            if (c.z() - k >= 0) visit(index(i, j, c.z() - k));
-            if (k > 0 && c.z() + k < dims_.z()) visit(index(i, j, c.z() + k));
-          }
-        }
-      // Every unvisited tet lies in a slab of the grid beyond this block of cells.
-      double bound = kInf;
-      const Eigen::Vector3d gridLo = origin_, gridHi = origin_ + h_ * dims_.cast<double>();
-      for (int a = 0; a < 3; ++a) {
-        if (lo[a] > 0) {
-          Eigen::Vector3d slabHi = gridHi;
-          slabHi[a] = origin_[a] + h_ * lo[a];
-          bound = std::min(bound, distanceToBox(p, gridLo, slabHi));
-        }
-        if (hi[a] < dims_[a] - 1) {
-          Eigen::Vector3d slabLo = gridLo;
-          slabLo[a] = origin_[a] + h_ * (hi[a] + 1);
-          bound = std::min(bound, distanceToBox(p, slabLo, gridHi));
-        }
-      }
-      if (bound == kInf || bound > std::min(dist, limit) + tie) return best;
-    }
   }
 
  private:
@@ -198,6 +102,55 @@ class TetGrid {
   double h_ = 1;
   Eigen::Vector3i dims_;
   std::vector<int> start_, items_;
+};
+
+// The tet nearest to a point outside the mesh. The mesh's nearest point lies on its boundary, so
+// the engine's point-to-surface query (mesh/SurfaceDistance) on the boundary faces finds it; every
+// tet holding that point (several when it lies on an edge or a node) is equally near, and the one
+// the point is least outside of is taken: its extension bends least.
+class NearestTet {
+ public:
+  explicit NearestTet(const TetMesh& mesh)
+      : mesh_(mesh), faces_(boundaryFaces(mesh)), tree_(mesh.rest, faces_, "embedPoints: the mesh boundary") {
+    // Tets at each node (CSR), to gather the tets holding an edge or a node.
+    start_.assign(mesh.numNodes() + 1, 0);
+    for (int e = 0; e < mesh.numTets(); ++e)
+      for (int a = 0; a < 4; ++a) ++start_[mesh.tets(a, e) + 1];
+    for (size_t v = 1; v < start_.size(); ++v) start_[v] += start_[v - 1];
+    std::vector<int> next(start_.begin(), start_.end() - 1);
+    items_.resize(start_.back());
+    for (int e = 0; e < mesh.numTets(); ++e)
+      for (int a = 0; a < 4; ++a) items_[next[mesh.tets(a, e)]++] = e;
+  }
+
+  // The nearest tet to p, its distance to p and p's barycentric coordinates in it.
+  int find(const Eigen::Vector3d& p, const TetGrid& grid, double& dist, Eigen::Vector4d& bary) const {
+    const NearestSurfacePoint q = tree_.nearest(p);
+    dist = q.distance;
+    const Eigen::Vector3i f = faces_.col(q.triangle);
+    // The face, edge or node of f that q lies on: the corners whose coordinate is not zero.
+    const Eigen::Vector3d w = barycentric(q.point, mesh_.rest.col(f[0]), mesh_.rest.col(f[1]), mesh_.rest.col(f[2]));
+    int feature[3], n = 0;
+    for (int k = 0; k < 3; ++k)
+      if (w[k] >= 1e-9) feature[n++] = f[k];
+    int best = -1;
+    double bestMin = -kInf;
+    for (int s = start_[feature[0]]; s < start_[feature[0] + 1]; ++s) {
+      const int e = items_[s];
+      bool holds = true;
+      for (int k = 1; k < n; ++k) holds = holds && (mesh_.tets.col(e).array() == feature[k]).any();
+      if (!holds) continue;
+      const Eigen::Vector4d b = grid.barycentric(e, p);
+      if (b.minCoeff() > bestMin) best = e, bestMin = b.minCoeff(), bary = b;
+    }
+    return best;
+  }
+
+ private:
+  const TetMesh& mesh_;
+  Eigen::Matrix3Xi faces_;
+  SurfaceDistanceTree tree_;
+  std::vector<int> start_, items_;  // tets at node v: items_[start_[v] .. start_[v+1])
 };
 
 }  // namespace
@@ -237,36 +190,45 @@ PointEmbedding embedPoints(const TetMesh& mesh, const Eigen::Matrix3Xd& points, 
   out.nodes_.resize(4, n);
   out.weights_.resize(4, n);
   out.outside_.resize(n);
-#pragma omp parallel
-  {
-    std::vector<int> stamp(mesh.numTets(), -1);
-#pragma omp for schedule(dynamic, 256)
-    for (int i = 0; i < n; ++i) {
-      const Eigen::Vector3d p = points.col(i);
-      Eigen::Vector4d bary = Eigen::Vector4d::Zero();
-      double dist = 0;
-      int e = grid.containing(p, options.insideTolerance, bary);
-      if (e < 0) e = grid.nearest(p, options.maxOutsideDistance, i, stamp, dist, bary);
-      out.tet_[i] = e;
-      out.outside_[i] = e < 0 ? kInf : dist;
-      if (e >= 0) {
-        out.nodes_.col(i) = mesh.tets.col(e);
-        out.weights_.col(i) = bary;
-      }
-    }
+  auto place = [&](int i, int e, double dist, const Eigen::Vector4d& bary) {
+    out.tet_[i] = e;
+    out.outside_[i] = dist;
+    out.nodes_.col(i) = mesh.tets.col(e);
+    out.weights_.col(i) = bary;
+  };
+  std::vector<char> outside(n, 0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector4d bary = Eigen::Vector4d::Zero();
+    const int e = grid.containing(points.col(i), options.insideTolerance, bary);
+    if (e >= 0) place(i, e, 0.0, bary);
+    else outside[i] = 1;
   }
 
-  // Refused points: the first by index, with its true distance (brute force: an error path).
-  const int refused = static_cast<int>((out.tet_.array() < 0).count());
+  // Points outside the mesh: the nearest tet, within the limit. The first refused point by index
+  // is reported.
+  std::vector<int> away;
+  for (int i = 0; i < n; ++i)
+    if (outside[i]) away.push_back(i);
+  if (away.empty()) return out;
+  const NearestTet nearest(mesh);
+  Eigen::VectorXd refusedAt = Eigen::VectorXd::Constant(n, -1.0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (size_t k = 0; k < away.size(); ++k) {
+    const int i = away[k];
+    Eigen::Vector4d bary = Eigen::Vector4d::Zero();
+    double dist = 0;
+    const int e = nearest.find(points.col(i), grid, dist, bary);
+    if (dist <= options.maxOutsideDistance) place(i, e, dist, bary);
+    else refusedAt[i] = dist;
+  }
+  const int refused = static_cast<int>((refusedAt.array() >= 0).count());
   if (refused > 0) {
     int i = 0;
-    while (out.tet_[i] >= 0) ++i;
+    while (refusedAt[i] < 0) ++i;
     const Eigen::Vector3d p = points.col(i);
-    double d = kInf;
-    for (int e = 0; e < mesh.numTets(); ++e)
-      if (grid.boxDistance(e, p) < d) d = std::min(d, grid.distance(e, p, grid.barycentric(e, p)));
     std::ostringstream msg;
-    msg << "embedPoints: point " << i << " (" << p.x() << ", " << p.y() << ", " << p.z() << ") is " << d
+    msg << "embedPoints: point " << i << " (" << p.x() << ", " << p.y() << ", " << p.z() << ") is " << refusedAt[i]
         << " mm outside the mesh, beyond the limit of " << options.maxOutsideDistance << " mm";
     if (refused > 1) msg << " (" << refused << " points in all)";
     throw std::invalid_argument(msg.str());

@@ -55,8 +55,10 @@ class PointEmbedding {
 // Embeds `points` (3 x n, mm) in the rest configuration of `mesh`, which must be valid
 // (validateMesh). Throws std::invalid_argument naming the point for a non-finite point, and
 // naming the point and its distance for a point farther than options.maxOutsideDistance from the
-// mesh (the first such point by index). Searches a uniform grid of tet bounding boxes, in parallel
-// over the points; the result does not depend on the thread count.
+// mesh (the first such point by index). Finds the tet holding a point in a uniform grid of tet
+// bounding boxes, and the tet nearest to a point outside through the engine's point-to-surface
+// query on the mesh boundary (mesh/SurfaceDistance); in parallel over the points, and the result
+// does not depend on the thread count.
 PointEmbedding embedPoints(const TetMesh& mesh, const Eigen::Matrix3Xd& points, const EmbeddingOptions& options = {});
 
 }  // namespace orthosim

@@ -1,5 +1,6 @@
 #include "mesh/SurfaceCleanup.hpp"
 
+#include "math/Angles.hpp"
 #include "mesh/SelfIntersection.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -26,7 +27,7 @@ int countSlivers(const Eigen::Matrix3Xd& V, const Eigen::Matrix3Xi& F, double* m
     bool bad = false;
     for (int c = 0; c < 3; ++c) {
       const Eigen::Vector3d u = V.col(F((c + 1) % 3, t)) - V.col(F(c, t)), v = V.col(F((c + 2) % 3, t)) - V.col(F(c, t));
-      const double a = std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / 3.14159265358979323846;
+      const double a = std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / kPi;
       smallest = std::min(smallest, a);
       bad = bad || a < 1.0 || a > 179.0;
     }
@@ -117,7 +118,7 @@ LabelledSurface cleanOnce(const LabelledSurface& in, const std::vector<char>& fr
   r.needlesAndCapsBefore = countSlivers(in.surface.vertices, in.surface.triangles);
 
   r.seamEdgesCollapsed = coarsenSeams(mesh, label, source, frozen, maxCollapseMm);
-  const double capCos = std::cos(capAngleDeg * 3.14159265358979323846 / 180.0);
+  const double capCos = std::cos(capAngleDeg * kPi / 180.0);
   // Seams stay where they are: a flip or a collapse across a seam would hand a triangle (and its
   // nodes) to another label, bonding tissue nodes that lie millimetres off their bone.
   auto seam = mesh.add_property_map<Mesh::Edge_index, bool>("e:seam", false).first;

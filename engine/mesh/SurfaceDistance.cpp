@@ -5,44 +5,72 @@
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <stdexcept>
-#include <string>
-#include <vector>
 
 namespace orthosim {
+namespace {
+
+// Distances need no exact predicates; the plain double kernel is what CGAL's examples use here.
+using Kernel = CGAL::Simple_cartesian<double>;
+using Triangle = Kernel::Triangle_3;
+using Iterator = std::vector<Triangle>::const_iterator;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_triangle_primitive<Kernel, Iterator>>>;
+
+Kernel::Point_3 point(const Eigen::Vector3d& p) { return Kernel::Point_3(p.x(), p.y(), p.z()); }
+
+}  // namespace
+
+struct SurfaceDistanceTree::Impl {
+  std::vector<Triangle> triangles;  // the kept ones; the tree holds iterators into them
+  std::vector<int> source;          // column of each in the surface given
+  Tree tree;
+};
+
+SurfaceDistanceTree::SurfaceDistanceTree(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles,
+                                         const std::string& what)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  if (!vertices.allFinite()) throw std::invalid_argument(what + ": a vertex is not finite");
+  for (int t = 0; t < triangles.cols(); ++t) {
+    for (int k = 0; k < 3; ++k)
+      if (triangles(k, t) < 0 || triangles(k, t) >= vertices.cols())
+        throw std::invalid_argument(what + ": triangle " + std::to_string(t) + " uses vertex " +
+                                    std::to_string(triangles(k, t)) + " of " + std::to_string(vertices.cols()));
+    const Eigen::Vector3d p[3] = {vertices.col(triangles(0, t)), vertices.col(triangles(1, t)),
+                                  vertices.col(triangles(2, t))};
+    if (!((p[1] - p[0]).cross(p[2] - p[0]).norm() > 1e-12)) continue;
+    m.triangles.emplace_back(point(p[0]), point(p[1]), point(p[2]));
+    m.source.push_back(t);
+  }
+  if (m.triangles.empty()) throw std::invalid_argument(what + ": no triangle of positive area");
+  m.tree.insert(m.triangles.cbegin(), m.triangles.cend());
+  m.tree.build();
+  m.tree.accelerate_distance_queries();
+}
+
+SurfaceDistanceTree::~SurfaceDistanceTree() = default;
+SurfaceDistanceTree::SurfaceDistanceTree(SurfaceDistanceTree&&) noexcept = default;
+SurfaceDistanceTree& SurfaceDistanceTree::operator=(SurfaceDistanceTree&&) noexcept = default;
+
+NearestSurfacePoint SurfaceDistanceTree::nearest(const Eigen::Vector3d& p) const {
+  const Kernel::Point_3 q = point(p);
+  const auto [closest, primitive] = impl_->tree.closest_point_and_primitive(q);
+  NearestSurfacePoint out;
+  out.point = Eigen::Vector3d(closest.x(), closest.y(), closest.z());
+  out.distance = std::sqrt(CGAL::squared_distance(q, closest));
+  out.triangle = impl_->source[primitive - impl_->triangles.cbegin()];
+  return out;
+}
+
+const std::vector<int>& SurfaceDistanceTree::keptTriangles() const { return impl_->source; }
 
 Eigen::VectorXd distancesToSurface(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles,
                                    const Eigen::Matrix3Xd& points) {
-  // Distances need no exact predicates; the plain double kernel is what CGAL's examples use here.
-  using Kernel = CGAL::Simple_cartesian<double>;
-  using Triangle = Kernel::Triangle_3;
-  using Iterator = std::vector<Triangle>::const_iterator;
-  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_triangle_primitive<Kernel, Iterator>>>;
-
-  if (!vertices.allFinite()) throw std::invalid_argument("surface distance: a surface vertex is not finite");
-  std::vector<Triangle> tris;
-  tris.reserve(triangles.cols());
-  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
-    Kernel::Point_3 p[3];
-    for (int k = 0; k < 3; ++k) {
-      const int v = triangles(k, t);
-      if (v < 0 || v >= vertices.cols())
-        throw std::invalid_argument("surface distance: triangle " + std::to_string(t) + " uses vertex " +
-                                    std::to_string(v) + " of " + std::to_string(vertices.cols()));
-      p[k] = Kernel::Point_3(vertices(0, v), vertices(1, v), vertices(2, v));
-    }
-    Triangle tri(p[0], p[1], p[2]);
-    if (!tri.is_degenerate()) tris.push_back(tri);
-  }
-  if (tris.empty()) throw std::invalid_argument("surface distance: the surface has no triangle of positive area");
-
-  // The tree holds iterators into `tris`, which stays unchanged while the tree lives.
-  Tree tree(tris.cbegin(), tris.cend());
-  tree.accelerate_distance_queries();
+  const SurfaceDistanceTree tree(vertices, triangles);
   Eigen::VectorXd d(points.cols());
-  for (Eigen::Index i = 0; i < points.cols(); ++i)
-    d[i] = std::sqrt(tree.squared_distance(Kernel::Point_3(points(0, i), points(1, i), points(2, i))));
+  for (Eigen::Index i = 0; i < points.cols(); ++i) d[i] = tree.nearest(points.col(i)).distance;
   return d;
 }
 

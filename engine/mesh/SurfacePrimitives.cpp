@@ -6,6 +6,8 @@
 #include <map>
 #include <vector>
 
+#include "math/Angles.hpp"
+
 namespace orthosim {
 
 SurfaceMesh makeBoxSurface(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
@@ -21,7 +23,6 @@ SurfaceMesh makeBoxSurface(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi)
 }
 
 SurfaceMesh makeIcosphere(double radius, int levels, const Eigen::Vector3d& centre) {
-  constexpr double kPi = 3.14159265358979323846;
   const double g = (1 + std::sqrt(5.0)) / 2;
   std::vector<Eigen::Vector3d> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
                                     {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};

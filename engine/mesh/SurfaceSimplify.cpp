@@ -195,11 +195,10 @@ std::unordered_map<long long, int> triangleIds(const Eigen::Matrix3Xi& F) {
   return ids;
 }
 
-}  // namespace
+// Per input triangle: how often a defect was found near it; at kMaxLevel it is frozen.
+constexpr int kMaxLevel = 3;
 
-LabelledSurface simplifySurface(const LabelledSurface& in, const SimplifyOptions& options, SimplifyReport* report) {
-  const Eigen::Matrix3Xd& V = in.surface.vertices;
-  const Eigen::Matrix3Xi& F = in.surface.triangles;
+void checkInput(const LabelledSurface& in, const SimplifyOptions& options) {
   const int m = in.surface.numTriangles();
   if (static_cast<int>(in.label.size()) != m)
     throw std::invalid_argument("simplifySurface: " + std::to_string(in.label.size()) + " labels for " +
@@ -208,8 +207,9 @@ LabelledSurface simplifySurface(const LabelledSurface& in, const SimplifyOptions
     throw std::invalid_argument("simplifySurface: cornerUv needs 3 columns per triangle");
   if (options.skinTriangles < 1) throw std::invalid_argument("simplifySurface: skinTriangles must be at least 1");
   if (!(options.interfaceDensity > 0)) throw std::invalid_argument("simplifySurface: interfaceDensity must be > 0");
-  if (V.cols() >= (1 << 21))
-    throw std::invalid_argument("simplifySurface: more than 2^21 vertices (" + std::to_string(V.cols()) + ")");
+  if (in.surface.vertices.cols() >= (1 << 21))
+    throw std::invalid_argument("simplifySurface: more than 2^21 vertices (" +
+                                std::to_string(in.surface.vertices.cols()) + ")");
   if (options.maxRounds < 1) throw std::invalid_argument("simplifySurface: maxRounds must be at least 1");
   if (!(options.maxErrorMm > 0 && std::isfinite(options.maxErrorMm)))
     throw std::invalid_argument("simplifySurface: maxErrorMm must be a positive number of mm");
@@ -217,24 +217,31 @@ LabelledSurface simplifySurface(const LabelledSurface& in, const SimplifyOptions
     if (!(options.refine[r].radius > 0) || !(options.refine[r].density > 0) || !options.refine[r].center.allFinite())
       throw std::invalid_argument("simplifySurface: refine region " + std::to_string(r) +
                                   " needs a finite centre, radius > 0 and density > 0");
+}
 
-  // Which region (largest density) each skin triangle's centroid lies in; -1: none.
-  std::vector<int> region(m, -1);
-  for (int t = 0; t < m; ++t) {
+// Which region (largest density) each skin triangle's centroid lies in; -1: none.
+std::vector<int> refineRegions(const LabelledSurface& in, const std::vector<RefineRegion>& refine) {
+  const Eigen::Matrix3Xd& V = in.surface.vertices;
+  const Eigen::Matrix3Xi& F = in.surface.triangles;
+  std::vector<int> region(F.cols(), -1);
+  for (int t = 0; t < F.cols(); ++t) {
     if (in.label[t] != 0) continue;
     const Eigen::Vector3d c = (V.col(F(0, t)) + V.col(F(1, t)) + V.col(F(2, t))) / 3;
-    for (size_t r = 0; r < options.refine.size(); ++r)
-      if ((c - options.refine[r].center).norm() <= options.refine[r].radius &&
-          (region[t] < 0 || options.refine[r].density > options.refine[region[t]].density))
+    for (size_t r = 0; r < refine.size(); ++r)
+      if ((c - refine[r].center).norm() <= refine[r].radius &&
+          (region[t] < 0 || refine[r].density > refine[region[t]].density))
         region[t] = static_cast<int>(r);
   }
+  return region;
+}
 
-  // Neighbours that may share a patch: same label and region, and on label 0 the same uv at both
-  // ends of the edge (a texture seam is a patch border, so within a patch a vertex has one uv).
-  // uv computed in different triangles along an intersection curve differs by rounding only.
+// Neighbours that may share a patch: same label and region, and on label 0 the same uv at both
+// ends of the edge (a texture seam is a patch border, so within a patch a vertex has one uv).
+// uv computed in different triangles along an intersection curve differs by rounding only.
+std::vector<std::pair<int, int>> patchJoins(const LabelledSurface& in, const std::vector<int>& region) {
   const double uvTolerance = in.hasUv() ? 1e-9 * std::max(1.0, in.cornerUv.cwiseAbs().maxCoeff()) : 0;
   std::vector<std::pair<int, int>> joins;
-  for (const auto& [key, corners] : edgeCorners(F)) {
+  for (const auto& [key, corners] : edgeCorners(in.surface.triangles)) {
     if (corners.size() != 2)
       throw std::invalid_argument("simplifySurface: the surface is not closed and manifold at edge (" +
                                   std::to_string(key >> 32) + ", " + std::to_string(key & 0xffffffff) + ")");
@@ -249,160 +256,221 @@ LabelledSurface simplifySurface(const LabelledSurface& in, const SimplifyOptions
     }
     joins.emplace_back(t0, t1);
   }
+  return joins;
+}
 
-  // Per input triangle: how often a defect was found near it (kMaxLevel: frozen).
-  constexpr int kMaxLevel = 3;
-  std::vector<int> level(m, 0);
+// Patches: connected components of the joins, one level each. patchOf[t]: the patch of input
+// triangle t.
+std::vector<Patch> makePatches(const LabelledSurface& in, const SimplifyOptions& options, const std::vector<int>& region,
+                               const std::vector<std::pair<int, int>>& joins, const std::vector<int>& level,
+                               std::vector<int>& patchOf) {
+  const int m = in.surface.numTriangles();
+  UnionFind uf(m);
+  for (const auto& [a, b] : joins)
+    if (level[a] == level[b]) uf.unite(a, b);
   std::vector<Patch> patches;
-  std::vector<int> patchOf(m);
-  Eigen::Matrix3Xi joined;
-  std::vector<int> joinedPatch;
-  std::unordered_map<long long, int> inputIds;  // built at the first defect
-  int round = 0;
-  for (;; ++round) {
-    // Patches: connected components of the joins, one level each.
-    UnionFind uf(m);
-    for (const auto& [a, b] : joins)
-      if (level[a] == level[b]) uf.unite(a, b);
-    patches.clear();
-    std::vector<int> rootPatch(m, -1);
-    for (int t = 0; t < m; ++t) {
-      int& p = rootPatch[uf.find(t)];
-      if (p < 0) {
-        p = static_cast<int>(patches.size());
-        patches.emplace_back();
-        Patch& q = patches.back();
-        q.label = in.label[t];
-        q.level = level[t];
-        q.frozen = level[t] >= kMaxLevel;
-        q.weight = (in.label[t] != 0 ? options.interfaceDensity : region[t] >= 0 ? options.refine[region[t]].density : 1.0) *
-                   std::pow(4.0, level[t]);
-      }
-      patchOf[t] = p;
-      patches[p].triangles.push_back(t);
-      patches[p].area += triangleArea(V, F.col(t));
+  std::vector<int> rootPatch(m, -1);
+  patchOf.resize(m);
+  for (int t = 0; t < m; ++t) {
+    int& p = rootPatch[uf.find(t)];
+    if (p < 0) {
+      p = static_cast<int>(patches.size());
+      patches.emplace_back();
+      Patch& q = patches.back();
+      q.label = in.label[t];
+      q.level = level[t];
+      q.frozen = level[t] >= kMaxLevel;
+      q.weight = (in.label[t] != 0 ? options.interfaceDensity : region[t] >= 0 ? options.refine[region[t]].density : 1.0) *
+                 std::pow(4.0, level[t]);
     }
-
-    // Budgets at the plain skin's triangles per area; frozen skin triangles count against them,
-    // but the rest keeps at least half its share (the target is missed rather than the skin ruined).
-    double skinWeightedArea = 0, frozenWeightedArea = 0, frozenSkin = 0;
-    for (const Patch& p : patches)
-      if (p.label == 0) {
-        (p.frozen ? frozenWeightedArea : skinWeightedArea) += p.area * p.weight;
-        if (p.frozen) frozenSkin += p.triangles.size();
-      }
-    const double freeBudget = std::max(options.skinTriangles - frozenSkin,
-                                       0.5 * options.skinTriangles * skinWeightedArea /
-                                           std::max(skinWeightedArea + frozenWeightedArea, 1e-300));
-    const double perArea = skinWeightedArea > 0 ? freeBudget / skinWeightedArea : 0;
-    for (Patch& p : patches) {
-      // A closed patch (an inner bone shell) must not collapse to nothing: at least 20 triangles.
-      p.target = std::max(p.label == 0 ? 1 : 20, static_cast<int>(std::lround(perArea * p.area * p.weight)));
-      simplifyPatch(in, p, options.maxErrorMm);
-    }
-    // Skin patches stuck above their target (locked borders) take budget from the others, once.
-    double stuck = 0, freeTarget = 0;
-    for (const Patch& p : patches)
-      if (p.label == 0 && !p.frozen) {
-        const int got = static_cast<int>(p.result.size());
-        if (got > 1.1 * p.target) stuck += got;
-        else freeTarget += p.target;
-      }
-    const double scale = freeTarget > 0 ? std::max(0.2, (freeBudget - stuck) / freeTarget) : 1;
-    if (std::abs(scale - 1) > 0.02)
-      for (Patch& p : patches)
-        if (p.label == 0 && !p.frozen && p.result.size() <= 1.1 * p.target) {
-          p.target = std::max(1, static_cast<int>(std::lround(p.target * scale)));
-          simplifyPatch(in, p, options.maxErrorMm);
-        }
-
-    // Rejoin and check.
-    size_t total = 0;
-    for (const Patch& p : patches) total += p.result.size();
-    joined.resize(3, static_cast<Eigen::Index>(total));
-    joinedPatch.assign(total, 0);
-    Eigen::Index next = 0;
-    for (size_t p = 0; p < patches.size(); ++p)
-      for (const auto& f : patches[p].result) joinedPatch[next] = static_cast<int>(p), joined.col(next++) = f;
-    const std::vector<char> bad = defectiveTriangles(V, joined);
-    if (std::find(bad.begin(), bad.end(), 1) == bad.end()) break;
-
-    // Refine the input around each defect. A defect needs a new triangle (the input is sound);
-    // the input triangles of its patch near it (in a ball 1.5 times its size) go up one level:
-    // a patch of their own at 4 times the density, left at input resolution at kMaxLevel. Other
-    // patches keep their share. In the last rounds the whole patches involved are frozen.
-    if (inputIds.empty()) inputIds = triangleIds(F);
-    int raised = 0;  // input triangles whose level went up
-    const bool wholePatches = round + 2 >= options.maxRounds;
-    struct Ball {
-      Eigen::Vector3d centre;
-      double radius;
-      int patch;
-    };
-    std::vector<Ball> balls;
-    for (size_t k = 0; k < bad.size(); ++k) {
-      if (!bad[k] || inputIds.count(triangleKey(joined.col(k)))) continue;
-      const Eigen::Vector3d c = (V.col(joined(0, k)) + V.col(joined(1, k)) + V.col(joined(2, k))) / 3;
-      double r = 0;
-      for (int i = 0; i < 3; ++i) r = std::max(r, (V.col(joined(i, k)) - c).norm());
-      balls.push_back({c, wholePatches ? std::numeric_limits<double>::infinity() : 1.5 * r, joinedPatch[k]});
-    }
-    for (int t = 0; t < m; ++t) {
-      if (level[t] >= kMaxLevel) continue;
-      for (const Ball& b : balls)
-        if (patchOf[t] == b.patch && ((V.col(F(0, t)) - b.centre).norm() <= b.radius ||
-                                      (V.col(F(1, t)) - b.centre).norm() <= b.radius ||
-                                      (V.col(F(2, t)) - b.centre).norm() <= b.radius)) {
-          level[t] = wholePatches ? kMaxLevel : level[t] + 1, ++raised;
-          break;
-        }
-    }
-    if (raised == 0)
-      throw std::invalid_argument("simplifySurface: the input surface is defective (crossing, degenerate or "
-                                  "non-manifold triangles at input resolution)");
+    patchOf[t] = p;
+    patches[p].triangles.push_back(t);
+    patches[p].area += triangleArea(in.surface.vertices, in.surface.triangles.col(t));
   }
-  // Compact: kept vertices in input order.
-  std::vector<int> newIndex(V.cols(), -1), source;
-  for (Eigen::Index t = 0; t < joined.cols(); ++t)
-    for (int c = 0; c < 3; ++c) newIndex[joined(c, t)] = 0;
+  return patches;
+}
+
+// Budgets at the plain skin's triangles per area; frozen skin triangles count against them, but
+// the rest keeps at least half its share (the target is missed rather than the skin ruined).
+// Returns the budget of the skin patches that are not frozen.
+double setTargets(const SimplifyOptions& options, std::vector<Patch>& patches) {
+  double skinWeightedArea = 0, frozenWeightedArea = 0, frozenSkin = 0;
+  for (const Patch& p : patches)
+    if (p.label == 0) {
+      (p.frozen ? frozenWeightedArea : skinWeightedArea) += p.area * p.weight;
+      if (p.frozen) frozenSkin += p.triangles.size();
+    }
+  const double freeBudget = std::max(options.skinTriangles - frozenSkin,
+                                     0.5 * options.skinTriangles * skinWeightedArea /
+                                         std::max(skinWeightedArea + frozenWeightedArea, 1e-300));
+  const double perArea = skinWeightedArea > 0 ? freeBudget / skinWeightedArea : 0;
+  // A closed patch (an inner bone shell) must not collapse to nothing: at least 20 triangles.
+  for (Patch& p : patches)
+    p.target = std::max(p.label == 0 ? 1 : 20, static_cast<int>(std::lround(perArea * p.area * p.weight)));
+  return freeBudget;
+}
+
+// Skin patches stuck above their target (locked borders) take budget from the others, once: those
+// are simplified again with their targets scaled.
+void rebalanceStuckSkin(const LabelledSurface& in, const SimplifyOptions& options, double freeBudget,
+                        std::vector<Patch>& patches) {
+  double stuck = 0, freeTarget = 0;
+  for (const Patch& p : patches)
+    if (p.label == 0 && !p.frozen) {
+      const int got = static_cast<int>(p.result.size());
+      if (got > 1.1 * p.target) stuck += got;
+      else freeTarget += p.target;
+    }
+  const double scale = freeTarget > 0 ? std::max(0.2, (freeBudget - stuck) / freeTarget) : 1;
+  if (std::abs(scale - 1) > 0.02)
+    for (Patch& p : patches)
+      if (p.label == 0 && !p.frozen && p.result.size() <= 1.1 * p.target) {
+        p.target = std::max(1, static_cast<int>(std::lround(p.target * scale)));
+        simplifyPatch(in, p, options.maxErrorMm);
+      }
+}
+
+// The patches' results side by side, with the patch of each triangle.
+struct JoinedPatches {
+  Eigen::Matrix3Xi triangles;
+  std::vector<int> patch;
+};
+
+JoinedPatches joinPatches(const std::vector<Patch>& patches) {
+  size_t total = 0;
+  for (const Patch& p : patches) total += p.result.size();
+  JoinedPatches joined;
+  joined.triangles.resize(3, static_cast<Eigen::Index>(total));
+  joined.patch.assign(total, 0);
+  Eigen::Index next = 0;
+  for (size_t p = 0; p < patches.size(); ++p)
+    for (const auto& f : patches[p].result) joined.patch[next] = static_cast<int>(p), joined.triangles.col(next++) = f;
+  return joined;
+}
+
+// Refines the input around each defect. A defect needs a new triangle (the input is sound); the
+// input triangles of its patch near it (in a ball 1.5 times its size) go up one level: a patch of
+// their own at 4 times the density, left at input resolution at kMaxLevel. Other patches keep
+// their share. With `wholePatches` (the last rounds) the whole patches involved are frozen.
+// Returns how many input triangles went up.
+int raiseLevelsAroundDefects(const LabelledSurface& in, const JoinedPatches& joined, const std::vector<char>& bad,
+                             const std::vector<int>& patchOf, const std::unordered_map<long long, int>& inputIds,
+                             bool wholePatches, std::vector<int>& level) {
+  const Eigen::Matrix3Xd& V = in.surface.vertices;
+  const Eigen::Matrix3Xi& F = in.surface.triangles;
+  const Eigen::Matrix3Xi& J = joined.triangles;
+  struct Ball {
+    Eigen::Vector3d centre;
+    double radius;
+    int patch;
+  };
+  std::vector<Ball> balls;
+  for (size_t k = 0; k < bad.size(); ++k) {
+    if (!bad[k] || inputIds.count(triangleKey(J.col(k)))) continue;
+    const Eigen::Vector3d c = (V.col(J(0, k)) + V.col(J(1, k)) + V.col(J(2, k))) / 3;
+    double r = 0;
+    for (int i = 0; i < 3; ++i) r = std::max(r, (V.col(J(i, k)) - c).norm());
+    balls.push_back({c, wholePatches ? std::numeric_limits<double>::infinity() : 1.5 * r, joined.patch[k]});
+  }
+  int raised = 0;
+  for (int t = 0; t < F.cols(); ++t) {
+    if (level[t] >= kMaxLevel) continue;
+    for (const Ball& b : balls)
+      if (patchOf[t] == b.patch && ((V.col(F(0, t)) - b.centre).norm() <= b.radius ||
+                                    (V.col(F(1, t)) - b.centre).norm() <= b.radius ||
+                                    (V.col(F(2, t)) - b.centre).norm() <= b.radius)) {
+        level[t] = wholePatches ? kMaxLevel : level[t] + 1, ++raised;
+        break;
+      }
+  }
+  return raised;
+}
+
+// The joined triangles as the result: kept vertices compacted in input order (source[i]: the input
+// vertex of result vertex i), labels and uv from their patches.
+LabelledSurface compactResult(const LabelledSurface& in, const std::vector<Patch>& patches,
+                              const std::vector<int>& patchOf, const JoinedPatches& joined, std::vector<int>& source) {
+  const Eigen::Matrix3Xd& V = in.surface.vertices;
+  const Eigen::Matrix3Xi& F = in.surface.triangles;
+  const Eigen::Matrix3Xi& J = joined.triangles;
+  std::vector<int> newIndex(V.cols(), -1);
+  source.clear();
+  for (Eigen::Index t = 0; t < J.cols(); ++t)
+    for (int c = 0; c < 3; ++c) newIndex[J(c, t)] = 0;
   for (Eigen::Index v = 0; v < V.cols(); ++v)
     if (newIndex[v] == 0) newIndex[v] = static_cast<int>(source.size()), source.push_back(static_cast<int>(v));
   LabelledSurface out;
   out.warnings = in.warnings;
   out.surface.vertices.resize(3, source.size());
   for (size_t i = 0; i < source.size(); ++i) out.surface.vertices.col(i) = V.col(source[i]);
-  out.surface.triangles.resize(3, joined.cols());
-  out.label.resize(joined.cols());
-  if (in.hasUv()) out.cornerUv.resize(2, 3 * joined.cols());
+  out.surface.triangles.resize(3, J.cols());
+  out.label.resize(J.cols());
+  if (in.hasUv()) out.cornerUv.resize(2, 3 * J.cols());
   // uv of a kept vertex within its patch: one value, since patches never cross a texture seam.
   std::vector<std::unordered_map<int, Eigen::Vector2d>> uvIn(in.hasUv() ? patches.size() : 0);
   if (in.hasUv())
-    for (int t = 0; t < m; ++t)
+    for (int t = 0; t < F.cols(); ++t)
       if (in.label[t] == 0)
         for (int c = 0; c < 3; ++c) uvIn[patchOf[t]].emplace(F(c, t), in.cornerUv.col(3 * t + c));
-  for (Eigen::Index t = 0; t < joined.cols(); ++t) {
-    const Patch& p = patches[joinedPatch[t]];
+  for (Eigen::Index t = 0; t < J.cols(); ++t) {
+    const Patch& p = patches[joined.patch[t]];
     out.label[t] = p.label;
     for (int c = 0; c < 3; ++c) {
-      out.surface.triangles(c, t) = newIndex[joined(c, t)];
+      out.surface.triangles(c, t) = newIndex[J(c, t)];
       if (in.hasUv())
-        out.cornerUv.col(3 * t + c) = p.label == 0 ? uvIn[joinedPatch[t]].at(joined(c, t))
+        out.cornerUv.col(3 * t + c) = p.label == 0 ? uvIn[joined.patch[t]].at(J(c, t))
                                                    : Eigen::Vector2d::Constant(std::nan(""));
     }
   }
+  return out;
+}
 
-  if (report) {
-    *report = SimplifyReport{};
-    report->skinTarget = options.skinTriangles;
-    for (const Patch& p : patches) {
-      (p.label == 0 ? report->skinTriangles : report->solidTriangles) += static_cast<int>(p.result.size());
-      report->maxErrorMm = std::max(report->maxErrorMm, p.errorMm);
-      if (p.frozen) report->frozenTriangles += static_cast<int>(p.triangles.size());
-    }
-    report->patches = static_cast<int>(patches.size());
-    report->rounds = round + 1;
-    report->sourceVertex = std::move(source);
+SimplifyReport makeReport(const SimplifyOptions& options, const std::vector<Patch>& patches, int rounds,
+                          std::vector<int> source) {
+  SimplifyReport report;
+  report.skinTarget = options.skinTriangles;
+  for (const Patch& p : patches) {
+    (p.label == 0 ? report.skinTriangles : report.solidTriangles) += static_cast<int>(p.result.size());
+    report.maxErrorMm = std::max(report.maxErrorMm, p.errorMm);
+    if (p.frozen) report.frozenTriangles += static_cast<int>(p.triangles.size());
   }
+  report.patches = static_cast<int>(patches.size());
+  report.rounds = rounds;
+  report.sourceVertex = std::move(source);
+  return report;
+}
+
+}  // namespace
+
+LabelledSurface simplifySurface(const LabelledSurface& in, const SimplifyOptions& options, SimplifyReport* report) {
+  checkInput(in, options);
+  const int m = in.surface.numTriangles();
+  const std::vector<int> region = refineRegions(in, options.refine);
+  const std::vector<std::pair<int, int>> joins = patchJoins(in, region);
+
+  // Simplify, check, refine around defects, until the rejoined surface is sound.
+  std::vector<int> level(m, 0);
+  std::vector<Patch> patches;
+  std::vector<int> patchOf;
+  JoinedPatches joined;
+  std::unordered_map<long long, int> inputIds;  // built at the first defect
+  int round = 0;
+  for (;; ++round) {
+    patches = makePatches(in, options, region, joins, level, patchOf);
+    const double freeBudget = setTargets(options, patches);
+    for (Patch& p : patches) simplifyPatch(in, p, options.maxErrorMm);
+    rebalanceStuckSkin(in, options, freeBudget, patches);
+    joined = joinPatches(patches);
+    const std::vector<char> bad = defectiveTriangles(in.surface.vertices, joined.triangles);
+    if (std::find(bad.begin(), bad.end(), 1) == bad.end()) break;
+    if (inputIds.empty()) inputIds = triangleIds(in.surface.triangles);
+    if (raiseLevelsAroundDefects(in, joined, bad, patchOf, inputIds, round + 2 >= options.maxRounds, level) == 0)
+      throw std::invalid_argument("simplifySurface: the input surface is defective (crossing, degenerate or "
+                                  "non-manifold triangles at input resolution)");
+  }
+  std::vector<int> source;
+  LabelledSurface out = compactResult(in, patches, patchOf, joined, source);
+  if (report) *report = makeReport(options, patches, round + 1, std::move(source));
   return out;
 }
 

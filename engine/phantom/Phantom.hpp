@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "image/RgbImage.hpp"
 #include "mesh/SurfaceMesh.hpp"
 
 namespace orthosim {
@@ -22,11 +23,6 @@ namespace orthosim {
 struct Landmark {
   std::string name;
   Eigen::Vector3d position;
-};
-
-struct RgbImage {
-  int width = 0, height = 0;
-  std::vector<unsigned char> pixels;  // RGB, row-major, top row first
 };
 
 struct PhantomVariant {

@@ -4,13 +4,13 @@
 #include <cmath>
 #include <vector>
 
+#include "math/Angles.hpp"
 #include "phantom/ImplicitShapes.hpp"
 #include "phantom/SweepSurface.hpp"
 
 namespace orthosim::phantom {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Ends: behind the second molars (so no tissue lies between the upper and lower crowns, which a
 // jaw move would shear), in front of the lips.
 constexpr double kBackX = -24.0, kFrontX = -110.0;

@@ -6,12 +6,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "math/Angles.hpp"
 #include "phantom/ImplicitShapes.hpp"
 
 namespace orthosim::phantom {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 const Eigen::Vector3d kCondyleAxisPoint(-3.0, 0.0, -5.0);
 
 // 0 behind the rami, 1 from the canines forward: how much of a sagittal or lateral change a

@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "math/Angles.hpp"
 #include "phantom/ImplicitShapes.hpp"
 #include "phantom/PhantomDesign.hpp"
 #include "phantom/SweepSurface.hpp"
@@ -12,7 +13,6 @@
 namespace orthosim::phantom {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kEndRound = 6.0;  // mm over which the sections thin to the posterior border
 constexpr double kSpineA = 30.0;    // x semi-axis of the spine's front part (dental arch: 38.5)
 

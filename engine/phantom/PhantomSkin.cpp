@@ -4,11 +4,11 @@
 #include <cmath>
 #include <vector>
 
+#include "math/Angles.hpp"
 #include "phantom/ImplicitShapes.hpp"
 
 namespace orthosim::phantom {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 }
 
 double skinField(const Eigen::Vector3d& p) {

@@ -4,14 +4,13 @@
 #include <cmath>
 #include <cstdint>
 
+#include "math/Angles.hpp"
 #include "phantom/ImplicitShapes.hpp"
 #include "phantom/PhantomDesign.hpp"
 #include "phantom/PhantomSkin.hpp"
 
 namespace orthosim::phantom {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Hash-based value noise in [0, 1]: fixed, so the texture is identical on every run.
 double hashNoise(int x, int y) {

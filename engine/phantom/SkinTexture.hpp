@@ -1,7 +1,7 @@
 #pragma once
 // The phantom's skin texture: a skin tone with faint deterministic mottling, reddish lips and
 // darker brows where the skin's uv (PhantomSkin.hpp) puts them, so a render reads as a face.
-#include "phantom/Phantom.hpp"
+#include "image/RgbImage.hpp"
 
 namespace orthosim::phantom {
 

@@ -5,12 +5,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "math/Angles.hpp"
 #include "phantom/GeodesicSphere.hpp"
 
 namespace orthosim::phantom {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double fieldAt(const StarSurfaceSpec& s, const Eigen::Vector3d& d, double t) { return s.field(s.centre + t * d); }
 

@@ -4,10 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "math/Angles.hpp"
+
 namespace orthosim::render {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxElevationDeg = 89.0;
 double radians(double deg) { return deg * kPi / 180.0; }
 

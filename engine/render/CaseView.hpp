@@ -1,10 +1,10 @@
 #pragma once
 // A case in a renderer: what a server session or a command does after building a CaseModel and
 // after each solve.
-#include "phantom/Phantom.hpp"  // RgbImage
+#include "image/RgbImage.hpp"
 #include "render/Renderer.hpp"
 #include "scene/CaseModel.hpp"
-#include "solver/Coupling.hpp"  // SimState
+#include "solver/SimState.hpp"
 
 namespace orthosim::render {
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "math/Angles.hpp"
 #include "render/RenderError.hpp"
 
 namespace orthosim::render {
@@ -25,7 +26,7 @@ ViewAngles anglesOf(ClinicalView v) {
   return {0, 0};
 }
 
-double tanHalf(double deg) { return std::tan(0.5 * deg * 3.14159265358979323846 / 180.0); }
+double tanHalf(double deg) { return std::tan(0.5 * deg * kPi / 180.0); }
 
 }  // namespace
 

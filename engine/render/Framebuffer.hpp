@@ -4,7 +4,7 @@
 // top first, as image files and the JPEG encoder expect (GL counts rows from the bottom).
 #include <vector>
 
-#include "phantom/Phantom.hpp"  // RgbImage
+#include "image/RgbImage.hpp"
 #include "render/GlHandle.hpp"
 
 namespace orthosim::render {

@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "phantom/Phantom.hpp"  // RgbImage
+#include "image/RgbImage.hpp"
 #include "render/GlHandle.hpp"
 
 namespace orthosim::render {

@@ -3,7 +3,7 @@
 // PNG (libpng), told apart by their first bytes, not by the file name; written by the file name.
 #include <string>
 
-#include "phantom/Phantom.hpp"  // RgbImage
+#include "image/RgbImage.hpp"
 
 namespace orthosim::render {
 

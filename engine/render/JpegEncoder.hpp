@@ -4,7 +4,7 @@
 // not allocate. One encoder per thread: a TurboJPEG handle is not shared between threads.
 #include <vector>
 
-#include "phantom/Phantom.hpp"  // RgbImage
+#include "image/RgbImage.hpp"
 
 namespace orthosim::render {
 

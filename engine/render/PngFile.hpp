@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "phantom/Phantom.hpp"  // RgbImage
+#include "image/RgbImage.hpp"
 
 namespace orthosim::render {
 

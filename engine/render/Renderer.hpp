@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "mesh/SurfaceMesh.hpp"
-#include "phantom/Phantom.hpp"  // RgbImage
+#include "image/RgbImage.hpp"
 #include "render/Camera.hpp"
 #include "render/CaseBones.hpp"
 #include "render/RenderOptions.hpp"

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "phantom/Phantom.hpp"  // RgbImage
+#include "image/RgbImage.hpp"
 
 namespace orthosim::render {
 

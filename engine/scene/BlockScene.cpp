@@ -1,5 +1,6 @@
 #include "scene/BlockScene.hpp"
 
+#include "math/Angles.hpp"
 #include "mesh/BoxMesh.hpp"
 
 namespace orthosim {
@@ -7,7 +8,7 @@ namespace orthosim {
 FragmentMotion blockReferenceMotion() {
   FragmentMotion m;
   m.translation = {0, 5, 3};
-  m.rotation = {0, 0, 5.0 * 3.14159265358979323846 / 180.0};
+  m.rotation = {0, 0, 5.0 * kPi / 180.0};
   m.center = {45, 20, 0};
   return m;
 }

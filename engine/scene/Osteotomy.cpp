@@ -3,10 +3,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "math/Angles.hpp"
+
 namespace orthosim {
 namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 double offsetOr(const OsteotomySpec& cut, double dflt) { return cut.offset >= 0 ? cut.offset : dflt; }
 

@@ -5,12 +5,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "math/Angles.hpp"
+
 namespace orthosim {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
-
-constexpr double kPi = 3.14159265358979323846;
 
 json parseJsonFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -9,14 +9,9 @@
 
 #include "scene/RigidPose.hpp"
 #include "scene/Scene.hpp"
+#include "solver/SimState.hpp"
 
 namespace orthosim {
-
-struct SimState {
-  Eigen::Matrix3Xd x;                // current node positions
-  std::vector<RigidPose> fragments;  // current pose of every fragment (rest: identity)
-  double fixedScale = 0.0;           // fraction of the fixed-node displacements applied
-};
 
 // What the boundary should be at the end of a (sub)step.
 struct BoundaryTargets {

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/Coupling.hpp"
+#include "solver/SimState.hpp"
 
 namespace orthosim {
 

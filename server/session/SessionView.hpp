@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "phantom/Phantom.hpp"  // RgbImage
+#include "image/RgbImage.hpp"
 #include "render/Camera.hpp"
 #include "render/ClinicalView.hpp"
 #include "render/JpegEncoder.hpp"
@@ -19,7 +19,7 @@
 #include "render/Renderer.hpp"
 #include "scene/CaseModel.hpp"
 #include "session/ViewRequest.hpp"
-#include "solver/Coupling.hpp"
+#include "solver/SimState.hpp"
 
 namespace orthosim::server {
 

@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "math/Angles.hpp"
 #include "mesh/MeshQuality.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/BlockScene.hpp"
@@ -35,8 +36,6 @@ namespace fs = std::filesystem;
 
 namespace orthosim {
 namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 double maxNorm(const Eigen::VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
 

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "math/Angles.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "mesh/SurfacePrimitives.hpp"
@@ -26,7 +27,6 @@ namespace orthosim {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
 
 // Turns every triangle of a shape that is star-shaped around `centre` to face away from it.
 void orientOutward(SurfaceMesh& m, const Eigen::Vector3d& centre) {

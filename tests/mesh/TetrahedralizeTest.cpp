@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "TestData.hpp"
+#include "math/Angles.hpp"
 #include "mesh/BoundaryFaces.hpp"
 #include "mesh/BoxMesh.hpp"
 #include "mesh/MeshQuality.hpp"
@@ -29,8 +30,6 @@ namespace orthosim {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr double kPi = 3.14159265358979323846;
 
 using Surface = SurfaceMesh;
 

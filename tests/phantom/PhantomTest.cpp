@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "math/Angles.hpp"
 #include "mesh/SelfIntersection.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
@@ -99,7 +100,7 @@ double minAngleDeg(const SurfaceMesh& m, int t) {
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d a = m.vertices.col(m.triangles(k, t)), b = m.vertices.col(m.triangles((k + 1) % 3, t)),
                           c = m.vertices.col(m.triangles((k + 2) % 3, t));
-    best = std::min(best, std::acos(std::clamp((b - a).normalized().dot((c - a).normalized()), -1.0, 1.0)) * 180 / M_PI);
+    best = std::min(best, std::acos(std::clamp((b - a).normalized().dot((c - a).normalized()), -1.0, 1.0)) * 180 / kPi);
   }
   return best;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "math/Angles.hpp"
 #include "scene/BoneFragments.hpp"
 #include "scene/Osteotomy.hpp"
 
@@ -209,7 +210,7 @@ TEST(BoneFragments, ANodeAmongTooManyCutPlanesIsRefusedByName) {
   Eigen::Matrix3Xd rest = Eigen::Matrix3Xd::Zero(3, 1);
   FragmentRegion fan{"fan", "bone", {}};
   for (int i = 0; i < 13; ++i) {
-    const double a = 3.14159265358979 * i / 13;
+    const double a = kPi * i / 13;
     fan.bounds.push_back(CutPlane{Eigen::Vector3d::Zero(), Eigen::Vector3d(std::cos(a), std::sin(a), 0)});
   }
   try {

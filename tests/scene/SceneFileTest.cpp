@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "math/Angles.hpp"
 #include "mesh/BoxMesh.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "mesh/SurfacePrimitives.hpp"
@@ -28,8 +29,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A 2x1x1-cell box, 20 x 10 x 10 mm: 12 nodes (z fastest, then y, then x), 12 tetrahedra.
 // Nodes 0..3 lie on x = 0, 4..7 on x = 10, 8..11 on x = 20.

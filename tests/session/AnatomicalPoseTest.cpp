@@ -1,6 +1,7 @@
 // The clinician's pose words map to the right rigid motions in the case's frame.
 #include <gtest/gtest.h>
 
+#include "math/Angles.hpp"
 #include "session/AnatomicalPose.hpp"
 
 namespace orthosim::server {
@@ -27,7 +28,7 @@ TEST(AnatomicalPose, PositivePitchRaisesTheFront) {
   const Eigen::Vector3d front(-50, 0, 0), back(50, 0, 0);
   EXPECT_GT(move(p, front).z(), 0);
   EXPECT_LT(move(p, back).z(), 0);
-  EXPECT_NEAR(move(p, front).z(), 50 * std::sin(10 * M_PI / 180), 1e-9);
+  EXPECT_NEAR(move(p, front).z(), 50 * std::sin(10 * kPi / 180), 1e-9);
 }
 
 TEST(AnatomicalPose, PositiveRollRaisesTheRightSide) {

@@ -5,14 +5,13 @@
 
 #include <atomic>
 
+#include "math/Angles.hpp"
 #include "mesh/BoxMesh.hpp"
 #include "scene/BlockScene.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim {
 namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 Scene coarseBlock() { return makeBlockScene(Eigen::Vector3i(6, 4, 2)); }
 
