@@ -1,11 +1,12 @@
 #include "eval/ResultJson.hpp"
 
+#include "math/Angles.hpp"
+
 #include <cmath>
 
 namespace orthosim {
 namespace {
 
-constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
 
 nlohmann::json vec3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 

@@ -1,5 +1,7 @@
 #include "session/AnatomicalPose.hpp"
 
+#include "math/Angles.hpp"
+
 #include <Eigen/Geometry>
 #include <cmath>
 #include <sstream>
@@ -7,7 +9,7 @@
 namespace orthosim::server {
 namespace {
 
-double radians(double deg) { return deg * M_PI / 180.0; }
+double radians(double deg) { return deg * kPi / 180.0; }
 
 }  // namespace
 

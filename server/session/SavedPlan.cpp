@@ -1,5 +1,7 @@
 #include "session/SavedPlan.hpp"
 
+#include "math/Angles.hpp"
+
 #include <cmath>
 
 namespace orthosim::server {
@@ -17,7 +19,7 @@ json savedPlanJson(const std::string& caseId, const std::string& name, const jso
                    const std::map<std::string, FragmentMotion>& plan) {
   json world = json::object();
   for (const auto& [fragment, motion] : plan) {
-    const Eigen::Vector3d deg = motion.rotation * 180.0 / M_PI;
+    const Eigen::Vector3d deg = motion.rotation * 180.0 / kPi;
     world[fragment] = {{"translation_mm", vec(motion.translation)}, {"rotation_deg", vec(deg)}, {"center_mm", vec(motion.center)}};
   }
   return {{"format", kPlanFormat}, {"case", caseId}, {"name", name}, {"poses", poses}, {"plan", world}};
