@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# What the browser test needs besides the build (scripts/setup-deps.sh): Debian's Chromium, Node.js
-# with npm, and playwright-core from the npm registry (tests/web/package-lock.json).
+# What the tests need besides the build (scripts/setup-deps.sh): Debian's Chromium, Node.js with npm
+# and playwright-core from the npm registry (tests/web/package-lock.json) for the browser tests, and
+# clang-format for the style check.
 # Idempotent: installs only what is missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 missing=()
 dpkg-query -W -f='${Status}' chromium 2>/dev/null | grep -q "install ok installed" || missing+=(chromium)
+command -v clang-format >/dev/null || missing+=(clang-format)  # test style.ClangFormat
 # Node.js by command, not package: a Node.js from elsewhere (NodeSource bundles npm) conflicts
 # with Debian's npm package, and any Node.js >= 18 with npm will do.
 command -v node >/dev/null || missing+=(nodejs)

@@ -105,6 +105,11 @@ int main(int argc, char** argv) {
   serve->add_option("--allow-host", serveOptions.allowedHosts, "Host name clients may use besides localhost, addresses and this machine's name (\"*\": any)");
   serve->add_option("--fine-workers", serveOptions.fineWorkers, "Fine jobs run at once")->check(CLI::Range(1, 16));
   serve->add_option("--max-sessions", serveOptions.maxSessions, "Planning sessions open at once")->check(CLI::Range(1, 1024));
+  serve->add_option("--preview-iterations", serveOptions.previewIterations,
+                    "Newton iterations one coarse preview may spend (beyond: refused, the last good preview kept)")
+      ->check(CLI::Range(1, 10000));
+  serve->add_option("--preview-seconds", serveOptions.previewSeconds, "Seconds one coarse preview may take")
+      ->check(CLI::Range(0.1, 3600.0));
   serve->add_option("--unopened-timeout", serveOptions.unopenedTimeoutSeconds,
                     "Seconds a session may stay without opening a case before it is closed")->check(CLI::Range(1, 86400));
   serve->add_flag("!--no-warm-up", serveOptions.warmUp, "Do not build the phantom's coarse model at start");

@@ -35,6 +35,7 @@ class Newton {
     bool lastWasChord = false;
     for (int it = 0;; ++it) {
       if (control_.cancelled()) return fail(rep, kCancelled);
+      if (control_.pastDeadline()) return fail(rep, kPastDeadline);
       Eigen::Matrix3Xd g;
       Eigen::VectorXd r;
       {

@@ -16,6 +16,8 @@ SubstepReport solveSubstep(Model& model, const BoundaryTargets& targets, const S
                            SimState& state, SolveTimings& timings, const SolveControl& control = {});
 
 inline constexpr const char* kCancelled = "cancelled";
+// The failure of a substep stopped at SolveControl::deadline.
+inline constexpr const char* kPastDeadline = "past the time budget";
 
 // One trial of the line search: the step alpha dz from energy e0 to `energy`, with slope = r . dz
 // the energy's derivative along dz at alpha = 0 (negative for a descent direction).

@@ -70,6 +70,10 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
       r.error = kCancelled;
       break;
     }
+    if (failure == kPastDeadline) {  // a shorter substep would not help: the time is spent
+      r.error = "the solve ran past its time budget; the state at load fraction " + std::to_string(s) + " is kept";
+      break;
+    }
     if (ok) {
       s = s1;
       if (control.onProgress) {

@@ -124,6 +124,8 @@ struct ServeOptions {
   int fineWorkers = 1;
   int maxSessions = 32;
   int unopenedTimeoutSeconds = 300;  // a session that opens no case in this time is closed
+  int previewIterations = 100;       // what one preview may spend (server::PlanningOptions)
+  double previewSeconds = 15;
 };
 // Serves HTTP (and later the WebSocket API) until SIGINT or SIGTERM; 0 on a clean stop, 1 when
 // the server cannot start (bad host, port taken, no web folder).

@@ -50,6 +50,8 @@ net::ServerOptions serverOptions(const ServeOptions& options) {
   server.planning.fineWorkers = options.fineWorkers;
   server.planning.maxSessions = options.maxSessions;
   server.webSocket.unopenedTimeout = std::chrono::seconds(options.unopenedTimeoutSeconds);
+  server.planning.previewIterations = options.previewIterations;
+  server.planning.previewTime = std::chrono::milliseconds(static_cast<long long>(options.previewSeconds * 1000));
   if (options.warmUp) server.warmUpCase = "phantom-0";
   return server;
 }

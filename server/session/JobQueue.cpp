@@ -1,11 +1,24 @@
 #include "session/JobQueue.hpp"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <algorithm>
 
 namespace orthosim::server {
 
-JobQueue::JobQueue(int workers, int capacity) : capacity_(capacity) {
-  for (int i = 0; i < std::max(1, workers); ++i) workers_.emplace_back([this] { work(); });
+JobQueue::JobQueue(int workers, int capacity, int niceness) : capacity_(capacity) {
+  for (int i = 0; i < std::max(1, workers); ++i)
+    workers_.emplace_back([this, niceness] {
+      // On Linux a thread's nice value is its own (PRIO_PROCESS with a thread id); relative to
+      // the server's, at most 19.
+      if (niceness != 0) {
+        const id_t self = static_cast<id_t>(::syscall(SYS_gettid));
+        (void)::setpriority(PRIO_PROCESS, self, std::min(19, ::getpriority(PRIO_PROCESS, self) + niceness));
+      }
+      work();
+    });
 }
 
 JobQueue::~JobQueue() { shutdown(); }

@@ -23,7 +23,9 @@ class JobQueue {
   using Run = std::function<void(long long job, const std::atomic<bool>& cancel)>;
   using Dropped = std::function<void(long long job)>;
 
-  JobQueue(int workers, int capacity);
+  // `niceness`: added to the workers' CPU nice value (Linux, per thread): fine jobs run 10 below
+  // the server so that the interactive previews on other threads get the cores first.
+  JobQueue(int workers, int capacity, int niceness = 0);
   ~JobQueue();
   JobQueue(const JobQueue&) = delete;
   JobQueue& operator=(const JobQueue&) = delete;

@@ -11,7 +11,7 @@ PlanningService::PlanningService(PlanningOptions options)
     : options_(std::move(options)),
       lock_(options_.dataDir),
       cases_(options_.cases, options_.dataDir),
-      fineJobs_(options_.fineWorkers, options_.fineQueue),
+      fineJobs_(options_.fineWorkers, options_.fineQueue, /*niceness=*/10),
       plans_(options_.dataDir / "plans"),
       previewPool_(static_cast<std::size_t>(std::max(1, options_.previewThreads))) {
   for (const std::string& leftover : removeLeftovers(options_.dataDir))

@@ -3,6 +3,7 @@
 // bounded queue of fine jobs, saved plans and exported files, and the count of open sessions.
 // Owned by the server; outlives every session.
 #include <atomic>
+#include <chrono>
 #include <boost/asio/thread_pool.hpp>
 #include <filesystem>
 #include <memory>
@@ -27,6 +28,11 @@ struct PlanningOptions {
   int fineQueue = 8;       // fine jobs waiting at most
   int maxSessions = 32;
   PoseLimits limits;
+  // What one preview may spend (both tries together: from the last preview, then from rest): an
+  // interactive answer, not a confirm. A pose that needs more is refused with the reason, the
+  // last good preview kept, and no session holds a preview thread for minutes.
+  int previewIterations = 100;
+  std::chrono::milliseconds previewTime{15000};
 };
 
 class PlanningService {
@@ -43,6 +49,7 @@ class PlanningService {
   PlanStore& plans() { return plans_; }
   ExportStore& exports() { return exports_; }
   const PoseLimits& limits() const { return options_.limits; }
+  const PlanningOptions& options() const { return options_; }
 
   // A session slot, or false when maxSessions are open; release with leave().
   bool tryEnter();

@@ -15,12 +15,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <memory>
 #include <sstream>
 #include <thread>
 #include <vector>
 
 #include "HttpTestClient.hpp"
+#include "TestWait.hpp"
 #include "ServerProcess.hpp"
 #include "WsTestClient.hpp"
 #include <nlohmann/json.hpp>
@@ -218,6 +220,91 @@ TEST(ServerHardening, AFullDiskFailsTheCaseWriteWithItsReason) {
       EXPECT_EQ(e.path().filename().string().find(".writing-"), std::string::npos) << e.path();
     EXPECT_FALSE(fs::exists(data / "cases" / "phantom-0" / "case.json"));
   }
+}
+
+nlohmann::json pose(const nlohmann::json& maxilla) {
+  return {{"type", "set_poses"}, {"poses", {{"maxilla", maxilla}}}};
+}
+
+void openPhantom(test::WsTestClient& ws) {
+  ws.request({{"type", "open"}, {"case", "phantom-0"}});
+  ws.waitFor("opened", 300s);
+}
+
+// The pose of the issue (pitch 30, roll -30, yaw 30) ran one preview for 104 s. A preview now has
+// a budget; beyond it the preview is refused with the reason and the last good one is kept.
+TEST(ServerHardening, APreviewOverItsBudgetIsRefusedAndTheLastGoodKept) {
+  test::ServerProcess server({"--preview-iterations", "8"});
+  test::WsTestClient ws(server.port());
+  openPhantom(ws);
+  ws.request(pose({{"anterior_mm", 1.0}}));
+  const nlohmann::json good = ws.waitFor("preview", 300s);
+  ws.request(pose({{"pitch_deg", 30}, {"roll_deg", -30}, {"yaw_deg", 30}}));
+  const nlohmann::json refused = ws.waitFor([](const nlohmann::json& m) {
+    return m["type"] == "preview_failed" || m["type"] == "preview";
+  }, 300s);
+  ASSERT_EQ(refused["type"], "preview_failed") << refused.dump();
+  const std::string message = refused["message"];
+  EXPECT_NE(message.find("may spend 8 iterations"), std::string::npos) << message;
+  EXPECT_NE(message.find("last good preview is kept"), std::string::npos) << message;
+  // The session goes on from the last good state.
+  ws.request(pose({{"anterior_mm", 1.5}}));
+  EXPECT_EQ(ws.waitFor([](const nlohmann::json& m) {
+    return m["type"] == "preview_failed" || m["type"] == "preview";
+  }, 300s)["type"], "preview");
+}
+
+// Two sessions dragging to poses the tissue cannot follow held both preview threads for minutes
+// (a third session's 0.4 s preview took 242 s). With the budget they give the threads back.
+TEST(ServerHardening, NoSessionHoldsThePreviewThreads) {
+  test::ServerProcess server({"--preview-iterations", "10"});
+  test::WsTestClient a(server.port()), b(server.port()), c(server.port());
+  for (test::WsTestClient* ws : {&a, &b, &c}) openPhantom(*ws);
+  const nlohmann::json heavy = pose({{"pitch_deg", 30}, {"roll_deg", -30}, {"yaw_deg", 30}});
+  a.request(heavy);
+  b.request(heavy);
+  c.request(pose({{"anterior_mm", 0.5}}));
+  const auto outcome = [](const nlohmann::json& m) { return m["type"] == "preview_failed" || m["type"] == "preview"; };
+  EXPECT_EQ(c.waitFor(outcome, 120s)["type"], "preview") << "the third session's small preview got a thread";
+  for (test::WsTestClient* ws : {&a, &b}) {
+    const nlohmann::json r = ws->waitFor(outcome, 120s);
+    EXPECT_EQ(r["type"], "preview_failed") << r.dump();
+  }
+}
+
+long residentKiB(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
+  return -1;
+}
+
+// Each session builds its own Model of the case (factorisations, states); after it closed, glibc
+// kept the freed heap (2.4 GB held after 16 sessions). Now the memory goes back to the system.
+TEST(ServerHardening, MemoryIsReturnedWhenSessionsClose) {
+  test::ServerProcess server;
+  long peak = 0;
+  for (int session = 0; session < 3; ++session) {
+    test::WsTestClient ws(server.port());
+    ws.request({{"type", "open"}, {"case", "phantom-0"}});
+    ws.waitFor("opened", 300s);
+    ws.request({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 2.0 + session}}}}}});
+    ws.waitFor("preview", 300s);
+    peak = std::max(peak, residentKiB(server.pid()));
+  }
+  long after = peak;
+  // Measured 2026-11-25: 305 MB with a session open, 149 MB after all closed; without the trim
+  // 377 MB and 349 MB. The cached case model stays (about half the peak).
+  // The last session's work ends on a worker thread shortly after its connection closes.
+  const bool dropped = test::waitUntil(
+      [&] {
+        after = residentKiB(server.pid());
+        return after < peak * 65 / 100;
+      },
+      20s);
+  std::cout << "resident: " << peak / 1024 << " MB with a session open, " << after / 1024
+            << " MB after all closed" << std::endl;
+  EXPECT_TRUE(dropped) << "peak " << peak << " KiB, after closing " << after << " KiB";
 }
 
 long cpuTicks(pid_t pid) {

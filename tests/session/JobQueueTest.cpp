@@ -1,7 +1,13 @@
 // A fine job learns its own id from the queue (no waiting for submit() to return), and a job
 // dropped while queued is told which it was.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
+#include <cerrno>
+
+#include <algorithm>
 #include <chrono>
 #include <future>
 #include <thread>
@@ -39,6 +45,25 @@ TEST(JobQueue, PassesEachJobItsIdWhenRunOrDropped) {
   ASSERT_EQ(dropped.wait_for(10s), std::future_status::ready);
   EXPECT_EQ(dropped.get(), *second);
   release.set_value();
+}
+
+// Fine jobs must not starve the previews: their workers run at a lower CPU priority.
+TEST(JobQueue, WorkersRunAtTheirNiceness) {
+  const int callerNiceness = ::getpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)));
+  JobQueue jobs(1, 1, 10);
+  std::promise<int> seen;
+  auto got = seen.get_future();
+  ASSERT_TRUE(jobs.submit(
+      "s1",
+      [&](long long, const std::atomic<bool>&) {
+        errno = 0;
+        seen.set_value(::getpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid))));
+      },
+      [](long long) {}));
+  ASSERT_EQ(got.wait_for(10s), std::future_status::ready);
+  EXPECT_EQ(got.get(), std::min(19, callerNiceness + 10)) << "nice is per thread";
+  EXPECT_EQ(::getpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid))), callerNiceness)
+      << "the caller's is untouched";
 }
 
 }  // namespace

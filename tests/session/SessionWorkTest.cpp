@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <thread>
+#include <vector>
 
 #include "TestWait.hpp"
 #include "session/ExportStore.hpp"
@@ -131,17 +132,38 @@ TEST(PlanStore, SavesAtomicallyListsAndLoads) {
 
 TEST(ExportStore, KeepsTheNewestWithinBounds) {
   ExportStore store(2, 1000);
-  const std::string a = store.add("a.stl", "model/stl", std::string(10, 'a'));
-  const std::string b = store.add("b.stl", "model/stl", std::string(10, 'b'));
-  const std::string c = store.add("c.stl", "model/stl", std::string(10, 'c'));
+  const std::string a = store.add("s1", "a.stl", "model/stl", std::string(10, 'a'));
+  const std::string b = store.add("s1", "b.stl", "model/stl", std::string(10, 'b'));
+  const std::string c = store.add("s1", "c.stl", "model/stl", std::string(10, 'c'));
   EXPECT_FALSE(store.find(a));
   EXPECT_EQ(store.find(b)->bytes, std::string(10, 'b'));
   EXPECT_EQ(store.find(c)->fileName, "c.stl");
-  const std::string big = store.add("big.stl", "model/stl", std::string(990, 'x'));
+  const std::string big = store.add("s1", "big.stl", "model/stl", std::string(990, 'x'));
   EXPECT_FALSE(store.find(b)) << "over the byte bound: the oldest go";
   EXPECT_TRUE(store.find(big));
+  EXPECT_LE(store.bytes(), 1000u);
   EXPECT_EQ(a.size(), 32u);
   EXPECT_NE(a, b);
+}
+
+// Issue 17: one session's 16 exports turned another session's download link into 404.
+TEST(ExportStore, OneSessionsExportsNeverPushOutAnothers) {
+  ExportStore store(16, 1000);
+  const std::string other = store.add("s2", "other.stl", "model/stl", std::string(100, 'o'));
+  std::vector<std::string> mine;
+  for (int i = 0; i < 20; ++i) mine.push_back(store.add("s1", "m.stl", "model/stl", std::string(10, 'm')));
+  EXPECT_TRUE(store.find(other)) << "the other session's file outlives 20 exports of this one";
+  EXPECT_FALSE(store.find(mine[3])) << "each session keeps its newest 16";
+  EXPECT_TRUE(store.find(mine[4]));
+  // Over the byte bound, the session holding the most bytes loses its oldest first.
+  const std::string large = store.add("s1", "large.stl", "model/stl", std::string(800, 'l'));
+  EXPECT_TRUE(store.find(other));
+  EXPECT_TRUE(store.find(large));
+  EXPECT_LE(store.bytes(), 1000u);
+  store.dropOwner("s1");
+  EXPECT_FALSE(store.find(large)) << "a closed session's files go";
+  EXPECT_TRUE(store.find(other));
+  EXPECT_EQ(store.bytes(), 100u);
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 // converged state and says why.
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include <atomic>
 
 #include "math/Angles.hpp"
@@ -221,6 +223,27 @@ TEST(PlanSolver, ReportsProgressAndStopsWhenCancelled) {
   cancel = false;
   control.onProgress = nullptr;
   EXPECT_TRUE(solvePlan(model, rest, model.targetsFromPlan(model.scene().plan, rest), s.solver, control).converged);
+}
+
+// A preview's time budget: past the deadline the solve stops at the next Newton iteration like a
+// cancel, keeping the last converged substep, and says why (no halving: the time is spent).
+TEST(PlanSolver, StopsAtItsDeadlineKeepingTheLastConvergedState) {
+  Scene s = coarseBlock();
+  s.solver.substeps = 10;
+  Model model(s);
+  SolveControl control;
+  int converged = 0;
+  control.onProgress = [&](const SolveProgress&) {
+    if (++converged == 2) control.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  };
+  const SimState rest = model.restState();
+  const SolveResult r = solvePlan(model, rest, model.targetsFromPlan(model.scene().plan, rest), s.solver, control);
+  EXPECT_FALSE(r.converged);
+  EXPECT_NE(r.error.find("time budget"), std::string::npos) << r.error;
+  EXPECT_NEAR(r.loadFraction, 0.2, 1e-12);
+  EXPECT_EQ(r.refinements, 0);
+  EXPECT_EQ(r.substeps.size(), 3u) << "two converged, the third stopped";
+  EXPECT_GT(model.energy().minDetF(r.state.x), 0.0);
 }
 
 TEST(PlanSolver, ExactHessianModeConvergesOnAMildPlan) {
