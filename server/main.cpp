@@ -11,8 +11,11 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   std::string scene, out;
-  auto* solve = app.add_subcommand("solve", "Solve a scene or surface-based case (JSON); write deformed nodes, skin and result.json");
-  solve->add_option("scene", scene, "Scene or case file (JSON, see docs/scene-format.md)")->required()->check(CLI::ExistingFile);
+  auto* solve = app.add_subcommand(
+      "solve", "Solve a scene or surface-based case (JSON); write deformed nodes, skin and result.json");
+  solve->add_option("scene", scene, "Scene or case file (JSON, see docs/scene-format.md)")
+      ->required()
+      ->check(CLI::ExistingFile);
   solve->add_option("--out", out, "Output folder")->required();
   std::string resolution = "coarse";
   orthosim::cli::SolveOptions solveOptions;
@@ -40,22 +43,33 @@ int main(int argc, char** argv) {
   orthosim::cli::RenderCommandOptions renderOptions;
   renderOptions.cacheDir = orthosim::defaultCacheDir();
   bool renderNoCache = false;
-  auto* render = app.add_subcommand("render", "Solve a case's plan and render the predicted face off-screen (PNG or JPEG)");
+  auto* render =
+      app.add_subcommand("render", "Solve a case's plan and render the predicted face off-screen (PNG or JPEG)");
   render->add_option("case", renderCase, "Surface-based case file (JSON)")->required()->check(CLI::ExistingFile);
   render->add_option("--out", renderOptions.out, "Image file: .png or .jpg")->required();
-  render->add_option("--plan", renderOptions.planPath,
-                     "Plan file {fragment: {translation_mm, rotation_deg, center_mm}} (or {\"plan\": {...}}) "
-                     "instead of the case's plan")->check(CLI::ExistingFile);
-  render->add_option("--view", renderOptions.view,
-                     "frontal, profile (right), profile_left, three_quarter (right), three_quarter_left, worms_eye, birds_eye");
+  render
+      ->add_option("--plan", renderOptions.planPath,
+                   "Plan file {fragment: {translation_mm, rotation_deg, center_mm}} (or {\"plan\": {...}}) "
+                   "instead of the case's plan")
+      ->check(CLI::ExistingFile);
+  render->add_option(
+      "--view", renderOptions.view,
+      "frontal, profile (right), profile_left, three_quarter (right), three_quarter_left, worms_eye, birds_eye");
   render->add_option("--width", renderOptions.width, "Image width in pixels")->check(CLI::Range(16, 8192));
   render->add_option("--height", renderOptions.height, "Image height in pixels")->check(CLI::Range(16, 8192));
   render->add_option("--colormap", renderOptions.colorMap,
-                     "none (texture), displacement (mm from rest) or difference (vs --reference, else this resolution vs the other, mm)");
-  render->add_option("--reference", renderOptions.reference, "With --colormap difference: a surface (OBJ, STL, PLY; "
-                     "the case's frame, mm) to measure the predicted skin against, e.g. a scan")->check(CLI::ExistingFile);
-  render->add_option("--scale-mm", renderOptions.scaleMm, "Colour scale: displacement maximum or difference range "
-                     "(default 10 and 3 mm)")->check(CLI::PositiveNumber);
+                     "none (texture), displacement (mm from rest) or difference (vs --reference, else this resolution "
+                     "vs the other, mm)");
+  render
+      ->add_option("--reference", renderOptions.reference,
+                   "With --colormap difference: a surface (OBJ, STL, PLY; "
+                   "the case's frame, mm) to measure the predicted skin against, e.g. a scan")
+      ->check(CLI::ExistingFile);
+  render
+      ->add_option("--scale-mm", renderOptions.scaleMm,
+                   "Colour scale: displacement maximum or difference range "
+                   "(default 10 and 3 mm)")
+      ->check(CLI::PositiveNumber);
   render->add_option("--resolution", renderResolution, "coarse (preview) or fine (confirm)")
       ->check(CLI::IsMember({"coarse", "fine"}));
   render->add_option("--cache", renderOptions.cacheDir, "Folder of built tissue models (default: ~/.cache/orthosim)");
@@ -66,21 +80,33 @@ int main(int argc, char** argv) {
   render->add_flag("--before-after", renderOptions.beforeAfter, "Rest (left) and predicted (right) side by side");
 
   orthosim::cli::CompareOptions compareOptions;
-  auto* compare = app.add_subcommand("compare", "Error of a predicted skin against a reference surface (signed distance, "
-                                                "area within 1-4 mm, face region, soft-tissue landmarks)");
-  compare->add_option("predicted", compareOptions.predicted, "Predicted skin (.stl, .obj, .ply), e.g. a solve's skin.obj")
-      ->required()->check(CLI::ExistingFile);
-  compare->add_option("reference", compareOptions.reference, "Reference surface: a finer solve or a post-operative scan")
-      ->required()->check(CLI::ExistingFile);
-  auto* compareCase = compare->add_option("--case", compareOptions.casePath, "The case (JSON): face region from its frame and landmarks, "
-                                                         "landmark errors on its rest skin")->check(CLI::ExistingFile);
-  compare->add_option("--rest", compareOptions.restPath, "With --case: the rest skin with the predicted skin's triangles "
-                                                         "(a solve's skin_rest.obj; default: the case's skin)")
-      ->check(CLI::ExistingFile)->needs(compareCase);
+  auto* compare = app.add_subcommand("compare",
+                                     "Error of a predicted skin against a reference surface (signed distance, "
+                                     "area within 1-4 mm, face region, soft-tissue landmarks)");
+  compare
+      ->add_option("predicted", compareOptions.predicted, "Predicted skin (.stl, .obj, .ply), e.g. a solve's skin.obj")
+      ->required()
+      ->check(CLI::ExistingFile);
+  compare
+      ->add_option("reference", compareOptions.reference, "Reference surface: a finer solve or a post-operative scan")
+      ->required()
+      ->check(CLI::ExistingFile);
+  auto* compareCase = compare
+                          ->add_option("--case", compareOptions.casePath,
+                                       "The case (JSON): face region from its frame and landmarks, "
+                                       "landmark errors on its rest skin")
+                          ->check(CLI::ExistingFile);
+  compare
+      ->add_option("--rest", compareOptions.restPath,
+                   "With --case: the rest skin with the predicted skin's triangles "
+                   "(a solve's skin_rest.obj; default: the case's skin)")
+      ->check(CLI::ExistingFile)
+      ->needs(compareCase);
   compare->add_option("--map", compareOptions.mapPath, "Write the predicted skin coloured by its error (.ply or .obj)");
   compare->add_option("--image", compareOptions.imagePath, "Render the error map of the predicted skin (.png or .jpg)");
-  compare->add_option("--view", compareOptions.view, "The image's view: frontal, profile, profile_left, three_quarter, "
-                                                     "three_quarter_left, worms_eye, birds_eye");
+  compare->add_option("--view", compareOptions.view,
+                      "The image's view: frontal, profile, profile_left, three_quarter, "
+                      "three_quarter_left, worms_eye, birds_eye");
   compare->add_option("--range", compareOptions.rangeMm, "Colour range of the map and image, +-mm (default 3)")
       ->check(CLI::Range(0.01, 1000.0));
   compare->add_option("--json", compareOptions.jsonPath, "Also write the figures to this JSON file");
@@ -94,7 +120,8 @@ int main(int argc, char** argv) {
   serve->add_option("--data", serveOptions.dataDir,
                     "Folder for built cases, the mesh cache and saved plans (default: $ORTHOSIM_DATA, else "
                     "~/.local/share/orthosim)");
-  serve->add_option("--cases", serveOptions.casesDir, "Folder of case folders (DIR/<id>/case.json) to serve besides the phantom");
+  serve->add_option("--cases", serveOptions.casesDir,
+                    "Folder of case folders (DIR/<id>/case.json) to serve besides the phantom");
   serve->add_option("--token", serveOptions.token, "Access token required on /api and /ws (default: $ORTHOSIM_TOKEN)");
   serve->add_option("--token-file", serveOptions.tokenFile,
                     "Without --token or $ORTHOSIM_TOKEN: read the token from this file, or write a random one there");
@@ -102,16 +129,21 @@ int main(int argc, char** argv) {
                   "Allow a --host other than the loopback without a token (anyone who reaches the port can plan)");
   serve->add_option("--allow-origin", serveOptions.allowedOrigins,
                     "Origin (e.g. http://planning.example:8080) whose pages may open the WebSocket; '*' allows any");
-  serve->add_option("--allow-host", serveOptions.allowedHosts, "Host name clients may use besides localhost, addresses and this machine's name (\"*\": any)");
+  serve->add_option("--allow-host", serveOptions.allowedHosts,
+                    "Host name clients may use besides localhost, addresses and this machine's name (\"*\": any)");
   serve->add_option("--fine-workers", serveOptions.fineWorkers, "Fine jobs run at once")->check(CLI::Range(1, 16));
-  serve->add_option("--max-sessions", serveOptions.maxSessions, "Planning sessions open at once")->check(CLI::Range(1, 1024));
-  serve->add_option("--preview-iterations", serveOptions.previewIterations,
-                    "Newton iterations one coarse preview may spend (beyond: refused, the last good preview kept)")
+  serve->add_option("--max-sessions", serveOptions.maxSessions, "Planning sessions open at once")
+      ->check(CLI::Range(1, 1024));
+  serve
+      ->add_option("--preview-iterations", serveOptions.previewIterations,
+                   "Newton iterations one coarse preview may spend (beyond: refused, the last good preview kept)")
       ->check(CLI::Range(1, 10000));
   serve->add_option("--preview-seconds", serveOptions.previewSeconds, "Seconds one coarse preview may take")
       ->check(CLI::Range(0.1, 3600.0));
-  serve->add_option("--unopened-timeout", serveOptions.unopenedTimeoutSeconds,
-                    "Seconds a session may stay without opening a case before it is closed")->check(CLI::Range(1, 86400));
+  serve
+      ->add_option("--unopened-timeout", serveOptions.unopenedTimeoutSeconds,
+                   "Seconds a session may stay without opening a case before it is closed")
+      ->check(CLI::Range(1, 86400));
   serve->add_flag("!--no-warm-up", serveOptions.warmUp, "Do not build the phantom's coarse model at start");
 
   try {

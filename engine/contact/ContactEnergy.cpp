@@ -11,7 +11,8 @@ ContactEnergy::ContactEnergy(std::vector<ContactPair> pairs) : pairs_(std::move(
   for (size_t k = 0; k < pairs_.size(); ++k) {
     if (!pairs_[k].surface) throw std::invalid_argument("contact pair " + std::to_string(k) + " has no surface");
     if (!(pairs_[k].stiffness > 0) || !std::isfinite(pairs_[k].stiffness))
-      throw std::invalid_argument("contact pair " + std::to_string(k) + ": stiffness must be a positive number of N/mm");
+      throw std::invalid_argument("contact pair " + std::to_string(k) +
+                                  ": stiffness must be a positive number of N/mm");
     memo_[k].at.assign(pairs_[k].nodes.size(), Eigen::Vector3d::Zero());
     memo_[k].clearance.assign(pairs_[k].nodes.size(), 0.0);
   }

@@ -25,8 +25,8 @@ struct ContactPair {
 
 struct ActiveContact {
   int node = -1;
-  double depth = 0;                  // signed distance, < 0
-  Eigen::Vector3d normal;            // outward, world frame
+  double depth = 0;        // signed distance, < 0
+  Eigen::Vector3d normal;  // outward, world frame
   double stiffness = 0;
 };
 

@@ -16,9 +16,9 @@ struct RigidSurface::Impl {
 
   Eigen::Matrix3Xd vertices;
   Eigen::Matrix3Xi triangles;
-  SurfaceDistanceTree tree;                      // leaves out triangles of zero area
-  std::vector<Eigen::Vector3d> faceNormal;       // unit, per triangle of the surface (kept ones set)
-  std::vector<Eigen::Vector3d> vertexNormal;     // angle-weighted pseudo-normals
+  SurfaceDistanceTree tree;                                   // leaves out triangles of zero area
+  std::vector<Eigen::Vector3d> faceNormal;                    // unit, per triangle of the surface (kept ones set)
+  std::vector<Eigen::Vector3d> vertexNormal;                  // angle-weighted pseudo-normals
   std::map<std::pair<int, int>, Eigen::Vector3d> edgeNormal;  // sum of the two face normals
   std::map<std::pair<int, int>, int> edgeUse;                 // 1: a border edge (open surface)
   std::vector<char> borderVertex;

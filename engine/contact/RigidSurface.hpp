@@ -15,10 +15,10 @@
 namespace orthosim {
 
 struct SurfacePoint {
-  double distance = 0;        // signed: negative inside the surface
-  Eigen::Vector3d closest;    // nearest point on the surface
-  Eigen::Vector3d normal;     // unit, outward: the direction that increases `distance`
-  int triangle = -1;          // the surface's triangle (its column) that holds `closest`
+  double distance = 0;      // signed: negative inside the surface
+  Eigen::Vector3d closest;  // nearest point on the surface
+  Eigen::Vector3d normal;   // unit, outward: the direction that increases `distance`
+  int triangle = -1;        // the surface's triangle (its column) that holds `closest`
 };
 
 class RigidSurface {

@@ -18,8 +18,8 @@ json cut(const char* tmpl, const char* bone, const char* side = nullptr) {
   return c;
 }
 
-CohortMotion move(const char* fragment, double ap, double si, double lr, double roll = 0, double pitch = 0, double yaw = 0,
-                  std::vector<std::string> center = {}) {
+CohortMotion move(const char* fragment, double ap, double si, double lr, double roll = 0, double pitch = 0,
+                  double yaw = 0, std::vector<std::string> center = {}) {
   // ap: advancement (+) / setback (-); si: impaction (+) / downgraft (-); lr: towards the right (+).
   CohortMotion m;
   m.fragment = fragment;
@@ -36,7 +36,8 @@ CohortMotion move(const char* fragment, double ap, double si, double lr, double 
 // The three segments of a segmented Le Fort I moved together, the posterior ones `expand` mm apart
 // each (arch widening).
 std::vector<CohortMotion> segmented(double ap, double si, double expand) {
-  return {move("maxilla_anterior", ap, si, 0), move("maxilla_left", ap, si, -expand), move("maxilla_right", ap, si, expand)};
+  return {move("maxilla_anterior", ap, si, 0), move("maxilla_left", ap, si, -expand),
+          move("maxilla_right", ap, si, expand)};
 }
 
 std::vector<CohortMotion> join(std::vector<CohortMotion> a, const std::vector<CohortMotion>& b) {
@@ -54,11 +55,13 @@ std::vector<CohortPatient> makeCohort() {
     c.push_back(std::move(p));
   };
   // Class III: maxillary advancement with arch expansion, mandibular setback.
-  add("M1", "class III", 2, "Le Fort I segmented", "BSSO", false, {cut("segmented_maxilla", "skull"), cut("bsso", "mandible")},
+  add("M1", "class III", 2, "Le Fort I segmented", "BSSO", false,
+      {cut("segmented_maxilla", "skull"), cut("bsso", "mandible")},
       join(segmented(4, 0, 1.5), {move("mandible", -5, 0, 0)}));
   // Open bite: posterior impaction (the maxilla pitched counter-clockwise), mandibular autorotation
   // forward and up.
-  add("M2", "open bite", 4, "Le Fort I segmented", "BSSO", false, {cut("segmented_maxilla", "skull"), cut("bsso", "mandible")},
+  add("M2", "open bite", 4, "Le Fort I segmented", "BSSO", false,
+      {cut("segmented_maxilla", "skull"), cut("bsso", "mandible")},
       join(segmented(2, 2, 1.0), {move("mandible", 3, 2, 0)}));
   add("M3", "class III", 2, "Le Fort II", "BSSO", false, {cut("le_fort_2", "skull"), cut("bsso", "mandible")},
       {move("maxilla", 5, 0, 0), move("mandible", -4, 0, 0)});
@@ -69,12 +72,16 @@ std::vector<CohortPatient> makeCohort() {
       {cut("le_fort_1", "skull"), cut("usso", "mandible", "right"), cut("genioplasty", "mandible")},
       {move("maxilla", 0, 0, -2), move("mandible", 0, 0, 0, 0, 0, 3, {"condylion_left"}),
        move("chin", 3, 0, -2, 0, 0, 3, {"condylion_left"})});
-  add("M5", "class II", 1, "Le Fort I segmented", "BSSO", false, {cut("segmented_maxilla", "skull"), cut("bsso", "mandible")},
+  add("M5", "class II", 1, "Le Fort I segmented", "BSSO", false,
+      {cut("segmented_maxilla", "skull"), cut("bsso", "mandible")},
       join(segmented(0, 3, 1.0), {move("mandible", 6, 0, 0)}));
-  add("M6", "class II", 1, "Le Fort I segmented", "BSSO", false, {cut("segmented_maxilla", "skull"), cut("bsso", "mandible")},
+  add("M6", "class II", 1, "Le Fort I segmented", "BSSO", false,
+      {cut("segmented_maxilla", "skull"), cut("bsso", "mandible")},
       join(segmented(2, 0, 1.5), {move("mandible", 8, 0, 0)}));
-  add("M7", "class III", 2, "Le Fort I segmented", "none", false, {cut("segmented_maxilla", "skull")}, segmented(6, 0, 1.5));
-  add("M8", "class III", 2, "Le Fort I segmented", "none", false, {cut("segmented_maxilla", "skull")}, segmented(4, 2, 2.0));
+  add("M7", "class III", 2, "Le Fort I segmented", "none", false, {cut("segmented_maxilla", "skull")},
+      segmented(6, 0, 1.5));
+  add("M8", "class III", 2, "Le Fort I segmented", "none", false, {cut("segmented_maxilla", "skull")},
+      segmented(4, 2, 2.0));
   // No maxillary surgery: mandibular midline correction, the distal segment turned about the
   // midpoint of the condyles (yaw +3 degrees: the chin about 4 mm to the left) and shifted 2 mm left.
   add("M9", "asymmetry", 3, "none", "BSSO", false, {cut("bsso", "mandible")},
@@ -89,9 +96,12 @@ std::vector<CohortPatient> makeCohort() {
 
 std::string CohortPatient::procedure() const {
   std::string s;
-  if (maxilla == "Le Fort I") s = "LF1";
-  else if (maxilla == "Le Fort I segmented") s = "LF1 seg";
-  else if (maxilla == "Le Fort II") s = "LF2";
+  if (maxilla == "Le Fort I")
+    s = "LF1";
+  else if (maxilla == "Le Fort I segmented")
+    s = "LF1 seg";
+  else if (maxilla == "Le Fort II")
+    s = "LF2";
   if (mandible != "none") s += (s.empty() ? "" : " + ") + mandible;
   if (genioplasty) s += (s.empty() ? "" : " + ") + std::string("genio");
   return s;
@@ -120,7 +130,8 @@ std::string writeCohortCase(const CohortPatient& patient, const std::string& dir
       Eigen::Vector3d c = Eigen::Vector3d::Zero();
       for (const std::string& name : m.centerLandmarks) {
         const auto it = phantom.landmarks.find(name);
-        if (it == phantom.landmarks.end()) throw std::runtime_error(patient.id + ": the phantom has no landmark '" + name + "'");
+        if (it == phantom.landmarks.end())
+          throw std::runtime_error(patient.id + ": the phantom has no landmark '" + name + "'");
         c += it->second / static_cast<double>(m.centerLandmarks.size());
       }
       motion["center_mm"] = {c.x(), c.y(), c.z()};

@@ -28,9 +28,9 @@ struct CohortPatient {
   std::string maxilla;    // "Le Fort I", "Le Fort I segmented", "Le Fort II", "none"
   std::string mandible;   // "BSSO", "USSO", "none"
   bool genioplasty = false;
-  std::vector<nlohmann::json> cuts;   // case-file cuts (docs/scene-format.md)
+  std::vector<nlohmann::json> cuts;  // case-file cuts (docs/scene-format.md)
   std::vector<CohortMotion> plan;
-  std::string procedure() const;      // short label, e.g. "LF1 seg + BSSO"
+  std::string procedure() const;  // short label, e.g. "LF1 seg + BSSO"
 };
 
 const std::vector<CohortPatient>& cohortPatients();

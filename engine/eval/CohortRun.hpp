@@ -30,7 +30,7 @@ struct CohortRun {
   std::vector<double> solveTimes;
   int iterations = 0, chordIterations = 0;
   std::vector<std::string> warnings;  // the solve's, about its result (crushed tissue)
-  SurfaceMesh rest, skin;  // full-resolution skin at rest and deformed
+  SurfaceMesh rest, skin;             // full-resolution skin at rest and deformed
   CaseSpec spec;
   // Against the reference (not for the reference itself):
   bool measured = false;

@@ -41,9 +41,10 @@ void addLandmarks(const ComparisonInput& in, Comparison& c) {
 
 nlohmann::json summaryJson(const ErrorSummary& s) {
   nlohmann::json within = nlohmann::json::object();
-  for (size_t k = 0; k < s.thresholds.size(); ++k) within[std::to_string(static_cast<int>(s.thresholds[k])) + "mm"] = s.shareWithin[k];
-  return {{"vertices", s.vertices},         {"area_mm2", s.area},        {"mean_signed_mm", s.meanSigned},
-          {"mean_abs_mm", s.meanAbs},       {"p95_abs_mm", s.p95Abs},    {"max_abs_mm", s.maxAbs},
+  for (size_t k = 0; k < s.thresholds.size(); ++k)
+    within[std::to_string(static_cast<int>(s.thresholds[k])) + "mm"] = s.shareWithin[k];
+  return {{"vertices", s.vertices},   {"area_mm2", s.area},     {"mean_signed_mm", s.meanSigned},
+          {"mean_abs_mm", s.meanAbs}, {"p95_abs_mm", s.p95Abs}, {"max_abs_mm", s.maxAbs},
           {"share_within", within}};
 }
 
@@ -56,7 +57,8 @@ nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 }  // namespace
 
 Comparison compareSurfaces(const ComparisonInput& in) {
-  if (!in.predicted || !in.reference) throw std::invalid_argument("compare: the predicted and reference surfaces are required");
+  if (!in.predicted || !in.reference)
+    throw std::invalid_argument("compare: the predicted and reference surfaces are required");
   Comparison c;
   c.error = measureSurfaceError(*in.predicted, *in.reference);
   c.whole = summarizeError(c.error);

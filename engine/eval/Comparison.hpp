@@ -26,8 +26,8 @@ struct Comparison {
   SurfaceError error;
   ErrorSummary whole;
   bool hasRegion = false;
-  std::string regionNote;       // the region in words, or why there is none
-  std::vector<char> inRegion;   // per predicted vertex; empty without a region
+  std::string regionNote;      // the region in words, or why there is none
+  std::vector<char> inRegion;  // per predicted vertex; empty without a region
   ErrorSummary region;
   std::vector<LandmarkError> landmarks;  // softTissueLandmarkNames(), when a case is given
 };

@@ -13,11 +13,13 @@ const std::vector<double>& defaultThresholds() {
   return t;
 }
 
-ErrorSummary summarizeError(const SurfaceError& e, const std::vector<char>& inRegion, const std::vector<double>& thresholds) {
+ErrorSummary summarizeError(const SurfaceError& e, const std::vector<char>& inRegion,
+                            const std::vector<double>& thresholds) {
   const Eigen::Index n = e.distance.size();
   if (e.area.size() != n) throw std::invalid_argument("surface error: distances and areas differ in count");
   if (!inRegion.empty() && static_cast<Eigen::Index>(inRegion.size()) != n)
-    throw std::invalid_argument("region: " + std::to_string(inRegion.size()) + " flags for " + std::to_string(n) + " vertices");
+    throw std::invalid_argument("region: " + std::to_string(inRegion.size()) + " flags for " + std::to_string(n) +
+                                " vertices");
   ErrorSummary s;
   s.thresholds = thresholds;
   s.shareWithin.assign(thresholds.size(), 0.0);

@@ -10,14 +10,14 @@
 namespace orthosim {
 
 struct ErrorSummary {
-  int vertices = 0;         // counted: in the region, area > 0
-  double area = 0;          // mm^2
-  double meanSigned = 0;    // mm
-  double meanAbs = 0;       // mm
-  double p95Abs = 0;        // mm: 95% of the area has |d| at most this
-  double maxAbs = 0;        // mm
-  std::vector<double> thresholds;  // mm
-  std::vector<double> shareWithin; // 0..1, one per threshold
+  int vertices = 0;                 // counted: in the region, area > 0
+  double area = 0;                  // mm^2
+  double meanSigned = 0;            // mm
+  double meanAbs = 0;               // mm
+  double p95Abs = 0;                // mm: 95% of the area has |d| at most this
+  double maxAbs = 0;                // mm
+  std::vector<double> thresholds;   // mm
+  std::vector<double> shareWithin;  // 0..1, one per threshold
 };
 
 const std::vector<double>& defaultThresholds();  // 1, 2, 3, 4 mm

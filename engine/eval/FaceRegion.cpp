@@ -28,7 +28,8 @@ FaceRegion faceRegion(const Landmarks& lm, const AnatomicalFrame& f, const FaceR
     text << "anterior of the coronal plane " << o.earBehindCondylionMm << " mm behind the condylions";
   } else {
     throw std::invalid_argument(
-        "region of interest: the case gives neither tragus_left and tragus_right nor condylion_left and condylion_right");
+        "region of interest: the case gives neither tragus_left and tragus_right nor condylion_left and "
+        "condylion_right");
   }
   if (!lm.count("soft_menton")) throw std::invalid_argument("region of interest: the case does not give soft_menton");
   r.chin = CutPlane{lm.at("soft_menton") - o.belowMentonMm * f.superior, f.superior};

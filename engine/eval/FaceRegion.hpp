@@ -21,8 +21,8 @@ struct FaceRegionOptions {
 };
 
 struct FaceRegion {
-  CutPlane ear;    // normal: anterior; inside where signedDistance >= 0
-  CutPlane chin;   // normal: superior
+  CutPlane ear;             // normal: anterior; inside where signedDistance >= 0
+  CutPlane chin;            // normal: superior
   std::string description;  // the two planes in words, with the landmarks used
 
   bool contains(const Eigen::Vector3d& x) const { return ear.signedDistance(x) >= 0 && chin.signedDistance(x) >= 0; }

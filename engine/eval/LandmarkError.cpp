@@ -74,7 +74,8 @@ std::vector<LandmarkError> landmarkErrors(const std::vector<std::string>& names,
     e.reference = referenceTracks ? place(s.reference, p) : reference->query(e.predicted).closest;
     e.note = referenceTracks ? "same skin point on both" : "reference: closest point (error across the surface only)";
     e.error = e.predicted - e.reference;
-    e.errorInFrame = Eigen::Vector3d(e.error.dot(frame.anterior), e.error.dot(frame.superior), e.error.dot(frame.right));
+    e.errorInFrame =
+        Eigen::Vector3d(e.error.dot(frame.anterior), e.error.dot(frame.superior), e.error.dot(frame.right));
     out.push_back(e);
   }
   return out;

@@ -18,16 +18,16 @@ namespace orthosim {
 const std::vector<std::string>& softTissueLandmarkNames();
 
 enum class LandmarkStatus {
-  Measured,       // predicted and reference positions found
-  Missing,        // the case does not give it
-  Untracked,      // the predicted surface is not the rest skin deformed (other triangles)
+  Measured,   // predicted and reference positions found
+  Missing,    // the case does not give it
+  Untracked,  // the predicted surface is not the rest skin deformed (other triangles)
 };
 
 struct LandmarkError {
   std::string name;
   LandmarkStatus status = LandmarkStatus::Missing;
-  std::string note;                // why not measured; or how the reference point was found
-  double restOffset = 0;           // mm from the case's landmark to the rest skin
+  std::string note;                   // why not measured; or how the reference point was found
+  double restOffset = 0;              // mm from the case's landmark to the rest skin
   bool referenceCorresponds = false;  // reference by the same weights (else: closest point)
   Eigen::Vector3d predicted = Eigen::Vector3d::Zero(), reference = Eigen::Vector3d::Zero();
   Eigen::Vector3d error = Eigen::Vector3d::Zero();  // predicted - reference, mm
@@ -36,7 +36,7 @@ struct LandmarkError {
 };
 
 struct LandmarkSurfaces {
-  const SurfaceMesh& rest;       // the case's skin at rest
+  const SurfaceMesh& rest;  // the case's skin at rest
   const SurfaceMesh& predicted;
   const SurfaceMesh& reference;
 };

@@ -36,12 +36,12 @@ RatioFlag flagRatio(double ratio, const RatioRange& range);
 
 struct MovementRatio {
   RatioBand band;
-  bool advancement = true;   // the bone moves forward (which of the band's ranges applies)
-  double hardMm = 0;         // the bone's forward movement (negative: back)
-  double softMm = 0;         // the soft landmark's forward movement
-  double ratio = 0;          // softMm / hardMm; NaN when not applicable
+  bool advancement = true;  // the bone moves forward (which of the band's ranges applies)
+  double hardMm = 0;        // the bone's forward movement (negative: back)
+  double softMm = 0;        // the soft landmark's forward movement
+  double ratio = 0;         // softMm / hardMm; NaN when not applicable
   RatioFlag flag = RatioFlag::NotApplicable;
-  std::string note;          // why not applicable
+  std::string note;  // why not applicable
   const RatioRange& range() const { return band.range(advancement); }
 };
 

@@ -14,23 +14,29 @@ using nlohmann::json;
 
 json realFaceCaseJson(const fs::path& face, const json& plan) {
   const auto f = [&](const char* name) { return (face / name).string(); };
-  return {
-      {"name", "artisynth face"},
-      {"frame", {{"anterior", {-1, 0, 0}}, {"superior", {0, 0, 1}}, {"right", {0, 1, 0}}}},
-      {"tissue", {{"node", f("face_volume.node")}, {"ele", f("face_volume.ele")}, {"skin", f("face_surface.obj")}}},
-      {"bones",
-       {{{"name", "midface"}, {"surface", f("maxilla.obj")}, {"nodes", f("fixed_to_skull.txt")}, {"derive", true},
-         {"candidates", f("deep_surface.txt")}, {"bond_distance_mm", 2.0}, {"fixed", true}},
-        {{"name", "mandible"}, {"surface", f("mandible.obj")}, {"nodes", f("attached_to_mandible.txt")}}}},
-      // Read off maxilla.obj: incisor tip at z 99 mm, so the apex about 23 mm above it; the
-      // palate's back end; the first molars.
-      {"landmarks",
-       {{"upper_incisor_apex", {52, 0, 122}}, {"PNS", {106.5, 0, 123.6}}, {"upper_molar_left", {80, -25, 103}},
-        {"upper_molar_right", {80, 25, 103}}}},
-      {"cuts", {{{"template", "le_fort_1"}, {"bone", "midface"}}}},
-      // Lips and cheeks slide on the teeth of both jaws.
-      {"contact", {{{"bones", {"midface", "mandible"}}, {"range_mm", 15}}}},
-      {"plan", plan}};
+  return {{"name", "artisynth face"},
+          {"frame", {{"anterior", {-1, 0, 0}}, {"superior", {0, 0, 1}}, {"right", {0, 1, 0}}}},
+          {"tissue", {{"node", f("face_volume.node")}, {"ele", f("face_volume.ele")}, {"skin", f("face_surface.obj")}}},
+          {"bones",
+           {{{"name", "midface"},
+             {"surface", f("maxilla.obj")},
+             {"nodes", f("fixed_to_skull.txt")},
+             {"derive", true},
+             {"candidates", f("deep_surface.txt")},
+             {"bond_distance_mm", 2.0},
+             {"fixed", true}},
+            {{"name", "mandible"}, {"surface", f("mandible.obj")}, {"nodes", f("attached_to_mandible.txt")}}}},
+          // Read off maxilla.obj: incisor tip at z 99 mm, so the apex about 23 mm above it; the
+          // palate's back end; the first molars.
+          {"landmarks",
+           {{"upper_incisor_apex", {52, 0, 122}},
+            {"PNS", {106.5, 0, 123.6}},
+            {"upper_molar_left", {80, -25, 103}},
+            {"upper_molar_right", {80, 25, 103}}}},
+          {"cuts", {{{"template", "le_fort_1"}, {"bone", "midface"}}}},
+          // Lips and cheeks slide on the teeth of both jaws.
+          {"contact", {{{"bones", {"midface", "mandible"}}, {"range_mm", 15}}}},
+          {"plan", plan}};
 }
 
 int anteriorMostMidlineVertex(const SurfaceMesh& skin, double zLo, double zHi) {

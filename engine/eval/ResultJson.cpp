@@ -7,7 +7,6 @@
 namespace orthosim {
 namespace {
 
-
 nlohmann::json vec3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 nlohmann::json num(double v) { return jsonNumber(v); }
@@ -50,7 +49,11 @@ nlohmann::json resultToJson(const Model& model, const SolveResult& r) {
 
   json subs = json::array();
   for (const auto& s : r.substeps) {
-    json j = {{"from", s.from}, {"to", s.to}, {"iterations", s.iterations}, {"chord_iterations", s.chordIterations}, {"converged", s.converged},
+    json j = {{"from", s.from},
+              {"to", s.to},
+              {"iterations", s.iterations},
+              {"chord_iterations", s.chordIterations},
+              {"converged", s.converged},
               {"residual_n", num(s.residual)}};
     if (s.converged) {
       j["energy_nmm"] = num(s.energy);
@@ -77,9 +80,14 @@ nlohmann::json resultToJson(const Model& model, const SolveResult& r) {
   out["fragments"] = frags;
 
   const auto& t = r.timings;
-  out["timings_s"] = {{"assembly", t.assembly}, {"factorization", t.factorization}, {"solve", t.solve},
-                      {"line_search", t.lineSearch}, {"total", t.total}, {"factorizations", t.factorizations},
-                      {"projected_factorizations", t.projectedFactorizations}, {"contact", t.contact},
+  out["timings_s"] = {{"assembly", t.assembly},
+                      {"factorization", t.factorization},
+                      {"solve", t.solve},
+                      {"line_search", t.lineSearch},
+                      {"total", t.total},
+                      {"factorizations", t.factorizations},
+                      {"projected_factorizations", t.projectedFactorizations},
+                      {"contact", t.contact},
                       {"contact_queries", t.contactQueries}};
   return out;
 }

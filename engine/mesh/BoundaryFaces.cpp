@@ -39,7 +39,8 @@ Eigen::Matrix3Xi boundaryFaces(const TetMesh& mesh) {
   }
   std::sort(boundary.begin(), boundary.end());
   Eigen::Matrix3Xi out(3, boundary.size());
-  for (size_t k = 0; k < boundary.size(); ++k) out.col(k) = Eigen::Vector3i(boundary[k][0], boundary[k][1], boundary[k][2]);
+  for (size_t k = 0; k < boundary.size(); ++k)
+    out.col(k) = Eigen::Vector3i(boundary[k][0], boundary[k][1], boundary[k][2]);
   return out;
 }
 

@@ -13,7 +13,8 @@ TetMesh makeBoxMesh(const BoxSpec& spec) {
   for (int i = 0; i <= nx; ++i)
     for (int j = 0; j <= ny; ++j)
       for (int k = 0; k <= nz; ++k)
-        m.rest.col(id(i, j, k)) = spec.size.cwiseProduct(Eigen::Vector3d(double(i) / nx, double(j) / ny, double(k) / nz));
+        m.rest.col(id(i, j, k)) =
+            spec.size.cwiseProduct(Eigen::Vector3d(double(i) / nx, double(j) / ny, double(k) / nz));
 
   static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   m.tets.resize(4, 6 * nx * ny * nz);

@@ -24,7 +24,8 @@ Mesh toCgal(const Eigen::Matrix3Xd& V, const Eigen::Matrix3Xi& F, const std::vec
   std::vector<char> added(V.cols(), 0);
   for (int t : triangles)
     for (int c = 0; c < 3; ++c)
-      if (!added[F(c, t)]) added[F(c, t)] = 1, v[F(c, t)] = m.add_vertex(Point(V(0, F(c, t)), V(1, F(c, t)), V(2, F(c, t))));
+      if (!added[F(c, t)])
+        added[F(c, t)] = 1, v[F(c, t)] = m.add_vertex(Point(V(0, F(c, t)), V(1, F(c, t)), V(2, F(c, t))));
   for (int t : triangles)
     if (m.add_face(v[F(0, t)], v[F(1, t)], v[F(2, t)]) == Mesh::null_face())
       throw std::runtime_error("cavity points: triangle " + std::to_string(t) + " does not fit a manifold surface");

@@ -1,8 +1,8 @@
 #include "mesh/CheckedFileSystem.hpp"
 
-#include <assimp/IOStream.hpp>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <assimp/IOStream.hpp>
 
 #include <cerrno>
 #include <cstdio>

@@ -96,7 +96,7 @@ class TetGrid {
   int index(int i, int j, int k) const { return (i * dims_.y() + j) * dims_.z() + k; }
 
   const TetMesh& mesh_;
-  Eigen::Matrix3Xd lo_, hi_;  // tet bounding boxes
+  Eigen::Matrix3Xd lo_, hi_;              // tet bounding boxes
   std::vector<Eigen::Matrix3d> inverse_;  // [x1-x0, x2-x0, x3-x0]^-1 per tet
   Eigen::Vector3d origin_;
   double h_ = 1;
@@ -201,8 +201,10 @@ PointEmbedding embedPoints(const TetMesh& mesh, const Eigen::Matrix3Xd& points, 
   for (int i = 0; i < n; ++i) {
     Eigen::Vector4d bary = Eigen::Vector4d::Zero();
     const int e = grid.containing(points.col(i), options.insideTolerance, bary);
-    if (e >= 0) place(i, e, 0.0, bary);
-    else outside[i] = 1;
+    if (e >= 0)
+      place(i, e, 0.0, bary);
+    else
+      outside[i] = 1;
   }
 
   // Points outside the mesh: the nearest tet, within the limit. The first refused point by index
@@ -219,8 +221,10 @@ PointEmbedding embedPoints(const TetMesh& mesh, const Eigen::Matrix3Xd& points, 
     Eigen::Vector4d bary = Eigen::Vector4d::Zero();
     double dist = 0;
     const int e = nearest.find(points.col(i), grid, dist, bary);
-    if (dist <= options.maxOutsideDistance) place(i, e, dist, bary);
-    else refusedAt[i] = dist;
+    if (dist <= options.maxOutsideDistance)
+      place(i, e, dist, bary);
+    else
+      refusedAt[i] = dist;
   }
   const int refused = static_cast<int>((refusedAt.array() >= 0).count());
   if (refused > 0) {

@@ -11,7 +11,8 @@
 
 namespace orthosim {
 
-std::vector<std::pair<int, int>> selfIntersections(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles) {
+std::vector<std::pair<int, int>> selfIntersections(const Eigen::Matrix3Xd& vertices,
+                                                   const Eigen::Matrix3Xi& triangles) {
   using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;  // exact tests on double input
   using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
   Mesh mesh;

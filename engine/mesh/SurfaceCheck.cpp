@@ -65,13 +65,14 @@ Work makeWork(const SurfaceMesh& mesh) {
   w.cls.resize(mesh.numVertices());
   std::map<std::array<double, 3>, int> index;
   for (int v = 0; v < mesh.numVertices(); ++v) {
-    const auto [it, added] = index.emplace(std::array<double, 3>{w.x(0, v), w.x(1, v), w.x(2, v)},
-                                           static_cast<int>(w.classPos.size()));
+    const auto [it, added] =
+        index.emplace(std::array<double, 3>{w.x(0, v), w.x(1, v), w.x(2, v)}, static_cast<int>(w.classPos.size()));
     if (added) w.classPos.push_back(w.x.col(v));
     w.cls[v] = it->second;
   }
   w.tris.resize(mesh.numTriangles());
-  for (int t = 0; t < mesh.numTriangles(); ++t) w.tris[t] = {mesh.triangles(0, t), mesh.triangles(1, t), mesh.triangles(2, t)};
+  for (int t = 0; t < mesh.numTriangles(); ++t)
+    w.tris[t] = {mesh.triangles(0, t), mesh.triangles(1, t), mesh.triangles(2, t)};
   return w;
 }
 
@@ -208,9 +209,12 @@ std::pair<int, int> removeDegenerateAndDuplicates(Work& w) {
   kept.reserve(w.tris.size());
   for (const Tri& t : w.tris) {
     const Tri c = w.classes(t);
-    if (degenerate(c)) ++degenerateCount;
-    else if (!seen.insert(canonical(c)).second) ++duplicateCount;
-    else kept.push_back(t);
+    if (degenerate(c))
+      ++degenerateCount;
+    else if (!seen.insert(canonical(c)).second)
+      ++duplicateCount;
+    else
+      kept.push_back(t);
   }
   w.tris.swap(kept);
   return {degenerateCount, duplicateCount};
@@ -321,8 +325,9 @@ void checkStructure(const SurfaceMesh& mesh, const std::string& name) {
     if (!mesh.vertices.col(v).allFinite() || (mesh.hasUv() && !mesh.uv.col(v).allFinite()))
       if (bad++ == 0) first = v;
   if (bad > 0)
-    throw std::runtime_error(name + ": non-finite coordinates (NaN or infinite) at " + count(bad, "vertex", "vertices") +
-                             ", e.g. vertex " + std::to_string(first) + " " + at(mesh.vertices.col(first)));
+    throw std::runtime_error(name + ": non-finite coordinates (NaN or infinite) at " +
+                             count(bad, "vertex", "vertices") + ", e.g. vertex " + std::to_string(first) + " " +
+                             at(mesh.vertices.col(first)));
 }
 
 int countNonFinite(const SurfaceMesh& mesh) {
@@ -393,7 +398,8 @@ SurfaceReport checkSurface(SurfaceMesh& mesh, const std::string& name, SurfaceRe
     if (requirement == SurfaceRequirement::Closed)
       defects.push_back("not closed: " + open + " (a hole or a crop; this surface must be closed)");
     else
-      warnings.push_back("open: " + open + "; accepted as a cropped surface, fit for coupling and for contact away from "
+      warnings.push_back("open: " + open +
+                         "; accepted as a cropped surface, fit for coupling and for contact away from "
                          "the crop (its outward side cannot be verified)");
   }
 

@@ -20,21 +20,21 @@ enum class SurfaceRequirement {
 // What a surface looks like; counts are after the repairs checkSurface made.
 struct SurfaceReport {
   int vertices = 0, triangles = 0;
-  int nonFiniteVertices = 0;      // a NaN or infinite coordinate
-  int unusedVertices = 0;         // in no triangle
-  int degenerateTriangles = 0;    // two corners at the same position
-  int duplicateTriangles = 0;     // same corners, same orientation as an earlier triangle
-  int zeroAreaTriangles = 0;      // three distinct but collinear corners
-  int boundaryEdges = 0;          // in one triangle only
-  int boundaryLoops = 0;          // connected chains of boundary edges: holes or crops
-  int nonManifoldEdges = 0;       // in more than two triangles
-  int nonManifoldVertices = 0;    // where separate sheets touch at a single point
-  int inconsistentEdges = 0;      // its two triangles run along it the same way: one is flipped
-  int selfIntersections = -1;     // pairs of crossing triangles; -1 when not checked
+  int nonFiniteVertices = 0;                         // a NaN or infinite coordinate
+  int unusedVertices = 0;                            // in no triangle
+  int degenerateTriangles = 0;                       // two corners at the same position
+  int duplicateTriangles = 0;                        // same corners, same orientation as an earlier triangle
+  int zeroAreaTriangles = 0;                         // three distinct but collinear corners
+  int boundaryEdges = 0;                             // in one triangle only
+  int boundaryLoops = 0;                             // connected chains of boundary edges: holes or crops
+  int nonManifoldEdges = 0;                          // in more than two triangles
+  int nonManifoldVertices = 0;                       // where separate sheets touch at a single point
+  int inconsistentEdges = 0;                         // its two triangles run along it the same way: one is flipped
+  int selfIntersections = -1;                        // pairs of crossing triangles; -1 when not checked
   Eigen::Vector3d extent = Eigen::Vector3d::Zero();  // bounding box size (mm if the units are right)
   double area = 0.0;
-  double signedVolume = 0.0;      // meaningful only when closed
-  std::string unitSuspicion;      // empty, or why the units look wrong
+  double signedVolume = 0.0;          // meaningful only when closed
+  std::string unitSuspicion;          // empty, or why the units look wrong
   std::vector<std::string> warnings;  // "<name>: ...": repairs made and defects accepted
 
   bool closed() const { return boundaryEdges == 0; }

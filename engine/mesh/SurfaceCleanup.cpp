@@ -26,7 +26,8 @@ int countSlivers(const Eigen::Matrix3Xd& V, const Eigen::Matrix3Xi& F, double* m
   for (int t = 0; t < F.cols(); ++t) {
     bool bad = false;
     for (int c = 0; c < 3; ++c) {
-      const Eigen::Vector3d u = V.col(F((c + 1) % 3, t)) - V.col(F(c, t)), v = V.col(F((c + 2) % 3, t)) - V.col(F(c, t));
+      const Eigen::Vector3d u = V.col(F((c + 1) % 3, t)) - V.col(F(c, t)),
+                            v = V.col(F((c + 2) % 3, t)) - V.col(F(c, t));
       const double a = std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / kPi;
       smallest = std::min(smallest, a);
       bad = bad || a < 1.0 || a > 179.0;
@@ -43,9 +44,7 @@ int countSlivers(const Eigen::Matrix3Xd& V, const Eigen::Matrix3Xi& F, double* m
 // to its neighbour on the seam, and only when no incident triangle turns over or degenerates.
 int coarsenSeams(Mesh& mesh, const Mesh::Property_map<Mesh::Face_index, int>& label,
                  Mesh::Property_map<Mesh::Vertex_index, int>& source, const std::vector<char>& frozen, double minEdge) {
-  const auto isSeam = [&](Mesh::Halfedge_index h) {
-    return label[mesh.face(h)] != label[mesh.face(mesh.opposite(h))];
-  };
+  const auto isSeam = [&](Mesh::Halfedge_index h) { return label[mesh.face(h)] != label[mesh.face(mesh.opposite(h))]; };
   const auto seamDegree = [&](Mesh::Vertex_index v) {
     int n = 0;
     for (auto h : CGAL::halfedges_around_target(v, mesh)) n += isSeam(h);
@@ -108,8 +107,11 @@ LabelledSurface cleanOnce(const LabelledSurface& in, const std::vector<char>& fr
   // one uv per vertex is exact away from texture seams.
   std::vector<Eigen::Vector2d> vertexUv(in.surface.numVertices(), Eigen::Vector2d::Constant(NAN));
   for (int t = 0; t < in.surface.numTriangles(); ++t) {
-    const auto f = mesh.add_face(vi[in.surface.triangles(0, t)], vi[in.surface.triangles(1, t)], vi[in.surface.triangles(2, t)]);
-    if (f == Mesh::null_face()) throw std::runtime_error("removeSlivers: the boundary is not a manifold surface (triangle " + std::to_string(t) + ")");
+    const auto f =
+        mesh.add_face(vi[in.surface.triangles(0, t)], vi[in.surface.triangles(1, t)], vi[in.surface.triangles(2, t)]);
+    if (f == Mesh::null_face())
+      throw std::runtime_error("removeSlivers: the boundary is not a manifold surface (triangle " + std::to_string(t) +
+                               ")");
     label[f] = in.label[t];
     if (in.hasUv() && in.label[t] == 0)
       for (int c = 0; c < 3; ++c) vertexUv[in.surface.triangles(c, t)] = in.cornerUv.col(3 * t + c);
@@ -186,8 +188,9 @@ LabelledSurface removeSlivers(const LabelledSurface& in, double maxCollapseMm, d
     const auto crossing = selfIntersections(out.surface.vertices, out.surface.triangles);
     r.rounds = round + 1;
     if (crossing.empty()) break;
-    if (round == 4) throw std::runtime_error("removeSlivers: the cleaned boundary still intersects itself after " +
-                                             std::to_string(r.rounds) + " rounds");
+    if (round == 4)
+      throw std::runtime_error("removeSlivers: the cleaned boundary still intersects itself after " +
+                               std::to_string(r.rounds) + " rounds");
     // Freeze the input vertices within a few collapse lengths of every crossing triangle.
     const double radius = 3.0 * maxCollapseMm;
     for (const auto& [a, b] : crossing)

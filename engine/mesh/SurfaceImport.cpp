@@ -2,16 +2,15 @@
 
 #include "mesh/CheckedFileSystem.hpp"
 
-#include <array>
-#include <assimp/Exporter.hpp>
-#include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <array>
+#include <assimp/Exporter.hpp>
+#include <assimp/Importer.hpp>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <memory>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -76,8 +75,8 @@ void checkStlStructure(const std::string& path, std::uintmax_t size) {
   std::memcpy(&count, head.data() + 80, sizeof count);
   const std::uint64_t expected = 84 + 50 * std::uint64_t(count);
   throw std::runtime_error(path + (size < expected ? ": truncated binary STL: " : ": binary STL of the wrong size: ") +
-                           "the header announces " + std::to_string(count) + " triangles (" +
-                           std::to_string(expected) + " bytes), the file has " + std::to_string(size) + " bytes");
+                           "the header announces " + std::to_string(count) + " triangles (" + std::to_string(expected) +
+                           " bytes), the file has " + std::to_string(size) + " bytes");
 }
 
 // Exact (position, uv) key for merging vertices across the parts of a file.
@@ -116,7 +115,8 @@ SurfaceMesh importSurface(const std::string& path) {
     for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
       const aiVector3D& p = mesh->mVertices[v];
       bool finite = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-      if (uv) finite = finite && std::isfinite(mesh->mTextureCoords[0][v].x) && std::isfinite(mesh->mTextureCoords[0][v].y);
+      if (uv)
+        finite = finite && std::isfinite(mesh->mTextureCoords[0][v].x) && std::isfinite(mesh->mTextureCoords[0][v].y);
       if (!finite && nonFinite++ == 0) firstBad = Eigen::Vector3d(p.x, p.y, p.z);
       bad[v] = !finite;
     }
@@ -129,11 +129,11 @@ SurfaceMesh importSurface(const std::string& path) {
     }
   }
   if (nonFinite > 0)
-    throw std::runtime_error(path + ": non-finite coordinates (NaN or infinite) " +
-                             (badTriangles > 0 ? "in " + std::to_string(badTriangles) +
-                                                     (badTriangles == 1 ? " triangle" : " triangles")
-                                               : std::string("at a vertex used by no triangle")) +
-                             ", e.g. " + point(firstBad));
+    throw std::runtime_error(
+        path + ": non-finite coordinates (NaN or infinite) " +
+        (badTriangles > 0 ? "in " + std::to_string(badTriangles) + (badTriangles == 1 ? " triangle" : " triangles")
+                          : std::string("at a vertex used by no triangle")) +
+        ", e.g. " + point(firstBad));
   if (primitives > 0)
     throw std::runtime_error(path + ": " + std::to_string(primitives) +
                              (primitives == 1 ? " line or point primitive" : " line or point primitives") +
@@ -194,14 +194,15 @@ std::unique_ptr<aiScene> exportScene(const SurfaceMesh& mesh, Format format, con
                                      const Eigen::Matrix3Xf* colours = nullptr) {
   if (mesh.numTriangles() == 0) throw std::runtime_error(path + ": cannot export: no triangles");
   if (mesh.hasUv() && mesh.uv.cols() != mesh.vertices.cols())
-    throw std::runtime_error(path + ": cannot export: " + std::to_string(mesh.uv.cols()) +
-                             " texture coordinates for " + std::to_string(mesh.numVertices()) + " vertices");
+    throw std::runtime_error(path + ": cannot export: " + std::to_string(mesh.uv.cols()) + " texture coordinates for " +
+                             std::to_string(mesh.numVertices()) + " vertices");
   for (int t = 0; t < mesh.numTriangles(); ++t)
     for (int k = 0; k < 3; ++k)
       if (mesh.triangles(k, t) < 0 || mesh.triangles(k, t) >= mesh.numVertices())
         throw std::runtime_error(path + ": cannot export: triangle " + std::to_string(t) + " refers to vertex " +
                                  std::to_string(mesh.triangles(k, t)) + " of " + std::to_string(mesh.numVertices()));
-  if (colours && format == Format::Stl) throw std::runtime_error(path + ": cannot export vertex colours to STL (use .ply or .obj)");
+  if (colours && format == Format::Stl)
+    throw std::runtime_error(path + ": cannot export vertex colours to STL (use .ply or .obj)");
   if (colours && colours->cols() != mesh.vertices.cols())
     throw std::runtime_error(path + ": cannot export: " + std::to_string(colours->cols()) + " colours for " +
                              std::to_string(mesh.numVertices()) + " vertices");
@@ -211,9 +212,9 @@ std::unique_ptr<aiScene> exportScene(const SurfaceMesh& mesh, Format format, con
   scene->mRootNode->mNumMeshes = 1;
   scene->mRootNode->mMeshes = new unsigned[1]{0};
   scene->mNumMaterials = 1;
-  scene->mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene->mMaterials = new aiMaterial* [1] { new aiMaterial() };
   scene->mNumMeshes = 1;
-  scene->mMeshes = new aiMesh*[1]{new aiMesh()};
+  scene->mMeshes = new aiMesh* [1] { new aiMesh() };
   aiMesh& am = *scene->mMeshes[0];
   am.mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
   const unsigned nt = static_cast<unsigned>(mesh.numTriangles());
@@ -252,7 +253,8 @@ std::unique_ptr<aiScene> exportScene(const SurfaceMesh& mesh, Format format, con
     if (mesh.hasUv()) {
       am.mTextureCoords[0] = new aiVector3D[nv];
       am.mNumUVComponents[0] = 2;
-      for (unsigned v = 0; v < nv; ++v) am.mTextureCoords[0][v] = aiVector3D(ai_real(mesh.uv(0, v)), ai_real(mesh.uv(1, v)), 0);
+      for (unsigned v = 0; v < nv; ++v)
+        am.mTextureCoords[0][v] = aiVector3D(ai_real(mesh.uv(0, v)), ai_real(mesh.uv(1, v)), 0);
     }
     if (colours) {
       am.mColors[0] = new aiColor4D[nv];

@@ -17,18 +17,18 @@ SurfaceMesh makeBoxSurface(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi)
     s.vertices.col(i) = Eigen::Vector3d(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
   s.triangles.resize(3, 12);
   s.triangles << 0, 0, 4, 4, 0, 0, 1, 1, 3, 3, 2, 2,  //
-      2, 3, 5, 7, 1, 5, 3, 7, 2, 6, 0, 4,              //
+      2, 3, 5, 7, 1, 5, 3, 7, 2, 6, 0, 4,             //
       3, 1, 7, 6, 5, 4, 7, 5, 6, 7, 4, 6;
   return s;
 }
 
 SurfaceMesh makeIcosphere(double radius, int levels, const Eigen::Vector3d& centre) {
   const double g = (1 + std::sqrt(5.0)) / 2;
-  std::vector<Eigen::Vector3d> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                                    {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-  std::vector<Eigen::Vector3i> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+  std::vector<Eigen::Vector3d> v = {{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
+                                    {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
+  std::vector<Eigen::Vector3i> f = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
                                     {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                                    {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+                                    {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   for (auto& p : v) p.normalize();
   for (int l = 0; l < levels; ++l) {
     std::map<std::pair<int, int>, int> mid;

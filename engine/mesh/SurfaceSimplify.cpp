@@ -92,12 +92,12 @@ std::vector<char> defectiveTriangles(const Eigen::Matrix3Xd& V, const Eigen::Mat
 }
 
 struct Patch {
-  std::vector<int> triangles;     // input triangle indices
+  std::vector<int> triangles;  // input triangle indices
   int label = 0;
-  double area = 0, weight = 1;    // weight: triangles per area relative to the plain skin
-  int level = 0;                  // refined around defects: 4^level x the density
-  bool frozen = false;            // level kMaxLevel: left at input resolution
-  int target = 0;                 // triangles wanted
+  double area = 0, weight = 1;  // weight: triangles per area relative to the plain skin
+  int level = 0;                // refined around defects: 4^level x the density
+  bool frozen = false;          // level kMaxLevel: left at input resolution
+  int target = 0;               // triangles wanted
   std::vector<Eigen::Vector3i> result;
   double errorMm = 0;
 };
@@ -176,12 +176,11 @@ void simplifyPatch(const LabelledSurface& in, Patch& p, double maxErrorMm) {
   // nose tip in its refine region) would otherwise collapse flat to reach its count.
   const float scale = meshopt_simplifyScale(xyz.data(), global.size(), 3 * sizeof(float));
   const float targetError = scale > 0 ? std::min(1.0f, static_cast<float>(maxErrorMm) / scale) : 1.0f;
-  const size_t count = meshopt_simplify(out.data(), indices.data(), indices.size(), xyz.data(), global.size(),
-                                        3 * sizeof(float), 3 * static_cast<size_t>(std::max(p.target, 1)), targetError,
-                                        meshopt_SimplifyLockBorder, &error);
+  const size_t count =
+      meshopt_simplify(out.data(), indices.data(), indices.size(), xyz.data(), global.size(), 3 * sizeof(float),
+                       3 * static_cast<size_t>(std::max(p.target, 1)), targetError, meshopt_SimplifyLockBorder, &error);
   p.errorMm = error * scale;
-  for (size_t k = 0; k < count; k += 3)
-    p.result.emplace_back(global[out[k]], global[out[k + 1]], global[out[k + 2]]);
+  for (size_t k = 0; k < count; k += 3) p.result.emplace_back(global[out[k]], global[out[k + 1]], global[out[k + 2]]);
   if (p.result.empty())  // collapsed a whole closed patch: keep it as it is
     for (int t : p.triangles) p.result.push_back(F.col(t));
   flipFlatTriangles(in.surface.vertices, p.result);
@@ -261,9 +260,9 @@ std::vector<std::pair<int, int>> patchJoins(const LabelledSurface& in, const std
 
 // Patches: connected components of the joins, one level each. patchOf[t]: the patch of input
 // triangle t.
-std::vector<Patch> makePatches(const LabelledSurface& in, const SimplifyOptions& options, const std::vector<int>& region,
-                               const std::vector<std::pair<int, int>>& joins, const std::vector<int>& level,
-                               std::vector<int>& patchOf) {
+std::vector<Patch> makePatches(const LabelledSurface& in, const SimplifyOptions& options,
+                               const std::vector<int>& region, const std::vector<std::pair<int, int>>& joins,
+                               const std::vector<int>& level, std::vector<int>& patchOf) {
   const int m = in.surface.numTriangles();
   UnionFind uf(m);
   for (const auto& [a, b] : joins)
@@ -280,7 +279,9 @@ std::vector<Patch> makePatches(const LabelledSurface& in, const SimplifyOptions&
       q.label = in.label[t];
       q.level = level[t];
       q.frozen = level[t] >= kMaxLevel;
-      q.weight = (in.label[t] != 0 ? options.interfaceDensity : region[t] >= 0 ? options.refine[region[t]].density : 1.0) *
+      q.weight = (in.label[t] != 0 ? options.interfaceDensity
+                  : region[t] >= 0 ? options.refine[region[t]].density
+                                   : 1.0) *
                  std::pow(4.0, level[t]);
     }
     patchOf[t] = p;
@@ -300,9 +301,9 @@ double setTargets(const SimplifyOptions& options, std::vector<Patch>& patches) {
       (p.frozen ? frozenWeightedArea : skinWeightedArea) += p.area * p.weight;
       if (p.frozen) frozenSkin += p.triangles.size();
     }
-  const double freeBudget = std::max(options.skinTriangles - frozenSkin,
-                                     0.5 * options.skinTriangles * skinWeightedArea /
-                                         std::max(skinWeightedArea + frozenWeightedArea, 1e-300));
+  const double freeBudget =
+      std::max(options.skinTriangles - frozenSkin, 0.5 * options.skinTriangles * skinWeightedArea /
+                                                       std::max(skinWeightedArea + frozenWeightedArea, 1e-300));
   const double perArea = skinWeightedArea > 0 ? freeBudget / skinWeightedArea : 0;
   // A closed patch (an inner bone shell) must not collapse to nothing: at least 20 triangles.
   for (Patch& p : patches)
@@ -318,8 +319,10 @@ void rebalanceStuckSkin(const LabelledSurface& in, const SimplifyOptions& option
   for (const Patch& p : patches)
     if (p.label == 0 && !p.frozen) {
       const int got = static_cast<int>(p.result.size());
-      if (got > 1.1 * p.target) stuck += got;
-      else freeTarget += p.target;
+      if (got > 1.1 * p.target)
+        stuck += got;
+      else
+        freeTarget += p.target;
     }
   const double scale = freeTarget > 0 ? std::max(0.2, (freeBudget - stuck) / freeTarget) : 1;
   if (std::abs(scale - 1) > 0.02)
@@ -376,9 +379,9 @@ int raiseLevelsAroundDefects(const LabelledSurface& in, const JoinedPatches& joi
   for (int t = 0; t < F.cols(); ++t) {
     if (level[t] >= kMaxLevel) continue;
     for (const Ball& b : balls)
-      if (patchOf[t] == b.patch && ((V.col(F(0, t)) - b.centre).norm() <= b.radius ||
-                                    (V.col(F(1, t)) - b.centre).norm() <= b.radius ||
-                                    (V.col(F(2, t)) - b.centre).norm() <= b.radius)) {
+      if (patchOf[t] == b.patch &&
+          ((V.col(F(0, t)) - b.centre).norm() <= b.radius || (V.col(F(1, t)) - b.centre).norm() <= b.radius ||
+           (V.col(F(2, t)) - b.centre).norm() <= b.radius)) {
         level[t] = wholePatches ? kMaxLevel : level[t] + 1, ++raised;
         break;
       }
@@ -418,8 +421,8 @@ LabelledSurface compactResult(const LabelledSurface& in, const std::vector<Patch
     for (int c = 0; c < 3; ++c) {
       out.surface.triangles(c, t) = newIndex[J(c, t)];
       if (in.hasUv())
-        out.cornerUv.col(3 * t + c) = p.label == 0 ? uvIn[joined.patch[t]].at(J(c, t))
-                                                   : Eigen::Vector2d::Constant(std::nan(""));
+        out.cornerUv.col(3 * t + c) =
+            p.label == 0 ? uvIn[joined.patch[t]].at(J(c, t)) : Eigen::Vector2d::Constant(std::nan(""));
     }
   }
   return out;
@@ -465,8 +468,9 @@ LabelledSurface simplifySurface(const LabelledSurface& in, const SimplifyOptions
     if (std::find(bad.begin(), bad.end(), 1) == bad.end()) break;
     if (inputIds.empty()) inputIds = triangleIds(in.surface.triangles);
     if (raiseLevelsAroundDefects(in, joined, bad, patchOf, inputIds, round + 2 >= options.maxRounds, level) == 0)
-      throw std::invalid_argument("simplifySurface: the input surface is defective (crossing, degenerate or "
-                                  "non-manifold triangles at input resolution)");
+      throw std::invalid_argument(
+          "simplifySurface: the input surface is defective (crossing, degenerate or "
+          "non-manifold triangles at input resolution)");
   }
   std::vector<int> source;
   LabelledSurface out = compactResult(in, patches, patchOf, joined, source);

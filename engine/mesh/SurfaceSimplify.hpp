@@ -17,15 +17,15 @@ namespace orthosim {
 // wins where regions overlap).
 struct RefineRegion {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
-  double radius = 0;      // mm
-  double density = 3.0;   // > 0
+  double radius = 0;     // mm
+  double density = 3.0;  // > 0
 };
 
 struct SimplifyOptions {
-  int skinTriangles = 3000;           // label-0 triangles wanted in all (coarse ~3000, fine ~20000)
+  int skinTriangles = 3000;  // label-0 triangles wanted in all (coarse ~3000, fine ~20000)
   std::vector<RefineRegion> refine;
-  double interfaceDensity = 1.0;      // solid patches: triangles per area relative to the plain skin
-  int maxRounds = 24;                 // of simplify-check-refine, see simplifySurface
+  double interfaceDensity = 1.0;  // solid patches: triangles per area relative to the plain skin
+  int maxRounds = 24;             // of simplify-check-refine, see simplifySurface
   // No collapse moves the surface farther than this (mm) by meshopt's quadric estimate (the true
   // distance can reach about twice that): where the count would need more, the patch keeps more
   // triangles and the other skin patches make up for it.
@@ -34,13 +34,13 @@ struct SimplifyOptions {
 
 struct SimplifyReport {
   int skinTarget = 0;
-  int skinTriangles = 0;              // label-0 triangles in the result
-  int solidTriangles = 0;             // label > 0 triangles in the result
+  int skinTriangles = 0;   // label-0 triangles in the result
+  int solidTriangles = 0;  // label > 0 triangles in the result
   int patches = 0;
-  double maxErrorMm = 0;              // largest meshopt result error over the patches (its estimate)
-  int rounds = 0;                     // simplify-check rounds run (1: the first result was sound)
-  int frozenTriangles = 0;            // input triangles left at input resolution around defects
-  std::vector<int> sourceVertex;      // result vertex i is input vertex sourceVertex[i]
+  double maxErrorMm = 0;          // largest meshopt result error over the patches (its estimate)
+  int rounds = 0;                 // simplify-check rounds run (1: the first result was sound)
+  int frozenTriangles = 0;        // input triangles left at input resolution around defects
+  std::vector<int> sourceVertex;  // result vertex i is input vertex sourceVertex[i]
 };
 
 // `in` must be closed and manifold with a label per triangle (subtractSurfaces' output). Budgets:

@@ -2,9 +2,9 @@
 // in, out) only then, and its error exit throws an int instead of calling exit().
 #include "mesh/Tetrahedralize.hpp"
 
-#include <Eigen/Geometry>
 #include <dlfcn.h>
 #include <tetgen.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
@@ -93,18 +93,19 @@ void checkSurface(const Eigen::Matrix3Xd& V, const Eigen::Matrix3Xi& T) {
       const int u = T(a, t), v = T((a + 1) % 3, t);
       halves.push_back({std::min(u, v), std::max(u, v), t, u < v});
     }
-  std::sort(halves.begin(), halves.end(),
-            [](const HalfEdge& a, const HalfEdge& b) { return std::tie(a.lo, a.hi, a.tri) < std::tie(b.lo, b.hi, b.tri); });
+  std::sort(halves.begin(), halves.end(), [](const HalfEdge& a, const HalfEdge& b) {
+    return std::tie(a.lo, a.hi, a.tri) < std::tie(b.lo, b.hi, b.tri);
+  });
   for (size_t i = 0; i < halves.size();) {
     size_t j = i;
     while (j < halves.size() && halves[j].lo == halves[i].lo && halves[j].hi == halves[i].hi) ++j;
     const std::string edge = "edge (" + std::to_string(halves[i].lo) + ", " + std::to_string(halves[i].hi) + ")";
-    if (j - i == 1)
-      fail("the surface is open: " + edge + " belongs only to triangle " + std::to_string(halves[i].tri));
+    if (j - i == 1) fail("the surface is open: " + edge + " belongs only to triangle " + std::to_string(halves[i].tri));
     if (j - i > 2) {
       std::string tris;
       for (size_t k = i; k < j; ++k) tris += (k > i ? ", " : "") + std::to_string(halves[k].tri);
-      fail("the surface is not manifold: " + edge + " belongs to " + std::to_string(j - i) + " triangles (" + tris + ")");
+      fail("the surface is not manifold: " + edge + " belongs to " + std::to_string(j - i) + " triangles (" + tris +
+           ")");
     }
     if (halves[i].forward == halves[i + 1].forward)
       fail("the surface is inconsistently oriented: triangles " + std::to_string(halves[i].tri) + " and " +
@@ -116,11 +117,11 @@ void checkSurface(const Eigen::Matrix3Xd& V, const Eigen::Matrix3Xi& T) {
 // Debian's libtet crashes on its own errors unless mesh/TetgenTerminate.cpp replaced its error
 // exit; make sure it did before handing TetGen anything.
 void requireTerminateOverride() {
-  static const bool ok =
-      dlsym(RTLD_DEFAULT, "_Z15terminatetetgenP10tetgenmeshi") == detail::tetgenTerminateOverride();
+  static const bool ok = dlsym(RTLD_DEFAULT, "_Z15terminatetetgenP10tetgenmeshi") == detail::tetgenTerminateOverride();
   if (!ok)
-    fail("TetGen's error exit terminatetetgen() does not resolve to mesh/TetgenTerminate.cpp, so any TetGen error "
-         "would crash the process (double free in libtet 1.5.0); refusing to run TetGen");
+    fail(
+        "TetGen's error exit terminatetetgen() does not resolve to mesh/TetgenTerminate.cpp, so any TetGen error "
+        "would crash the process (double free in libtet 1.5.0); refusing to run TetGen");
 }
 
 void fillPlc(tetgenio& in, const Eigen::Matrix3Xd& V, const Eigen::Matrix3Xi& T, const Eigen::Matrix3Xd& holes) {
@@ -190,13 +191,20 @@ std::string intersectingTriangles(tetgenio& in, const Eigen::Matrix3Xi& T) {
 // TetGen 1.5's error codes, as its terminatetetgen() explains them.
 std::string tetgenError(int code, tetgenio& in, const Eigen::Matrix3Xi& T) {
   switch (code) {
-    case 1: return "TetGen ran out of memory";
-    case 2: return "TetGen hit an internal error (a TetGen bug; the surface may be nearly degenerate)";
-    case 3: return "the surface intersects itself" + intersectingTriangles(in, T);
-    case 4: return "TetGen found a very small input feature (a vertex almost on an edge or triangle it is not part of)";
-    case 5: return "TetGen found two nearly coincident triangles";
-    case 10: return "TetGen rejected the input";
-    default: return "TetGen failed with error code " + std::to_string(code);
+    case 1:
+      return "TetGen ran out of memory";
+    case 2:
+      return "TetGen hit an internal error (a TetGen bug; the surface may be nearly degenerate)";
+    case 3:
+      return "the surface intersects itself" + intersectingTriangles(in, T);
+    case 4:
+      return "TetGen found a very small input feature (a vertex almost on an edge or triangle it is not part of)";
+    case 5:
+      return "TetGen found two nearly coincident triangles";
+    case 10:
+      return "TetGen rejected the input";
+    default:
+      return "TetGen failed with error code " + std::to_string(code);
   }
 }
 
@@ -258,7 +266,8 @@ TetMesh tetrahedralize(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi&
   const std::string where = " [TetGen -" + switches + "]";
   if (out.numberoftetrahedra == 0)
     fail("TetGen produced no tetrahedra: the surface encloses no volume (or the holes empty all of it)" + where);
-  if (out.numberofcorners != 4) fail("TetGen produced " + std::to_string(out.numberofcorners) + "-node elements" + where);
+  if (out.numberofcorners != 4)
+    fail("TetGen produced " + std::to_string(out.numberofcorners) + "-node elements" + where);
   if (out.numberofpoints < n) fail("TetGen returned fewer nodes than input vertices" + where);
 
   TetMesh mesh;
@@ -267,13 +276,15 @@ TetMesh tetrahedralize(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi&
     for (int a = 0; a < 3; ++a) mesh.rest(a, i) = out.pointlist[3 * i + a];
   for (int i = 0; i < n; ++i)
     if (mesh.rest.col(i) != vertices.col(i))
-      fail("TetGen moved or renumbered input vertex " + std::to_string(i) + " (now " + point(mesh.rest.col(i)) + ")" + where);
+      fail("TetGen moved or renumbered input vertex " + std::to_string(i) + " (now " + point(mesh.rest.col(i)) + ")" +
+           where);
 
   mesh.tets.resize(4, out.numberoftetrahedra);
   for (int e = 0; e < out.numberoftetrahedra; ++e) {
     for (int a = 0; a < 4; ++a) {
       const int v = out.tetrahedronlist[4 * e + a] - out.firstnumber;
-      if (v < 0 || v >= mesh.numNodes()) fail("TetGen element " + std::to_string(e) + " refers to a missing node" + where);
+      if (v < 0 || v >= mesh.numNodes())
+        fail("TetGen element " + std::to_string(e) + " refers to a missing node" + where);
       mesh.tets(a, e) = v;
     }
     // TetGen orients tets as orthosim does (det[x1-x0, x2-x0, x3-x0] > 0, checked by the tests);
@@ -297,14 +308,16 @@ TetMesh tetrahedralize(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi&
     for (int t = 0; t < triangles.cols(); ++t) {
       input.push_back(sortedKey(triangles(0, t), triangles(1, t), triangles(2, t)));
       if (!std::binary_search(faces.begin(), faces.end(), input.back()))
-        fail("TetGen split the surface despite -Y: triangle " + std::to_string(t) + " is not a face of the mesh" + where);
+        fail("TetGen split the surface despite -Y: triangle " + std::to_string(t) + " is not a face of the mesh" +
+             where);
     }
     std::sort(input.begin(), input.end());
     const Eigen::Matrix3Xi boundary = boundaryFaces(mesh);
     for (int f = 0; f < boundary.cols(); ++f)
       if (!std::binary_search(input.begin(), input.end(), sortedKey(boundary(0, f), boundary(1, f), boundary(2, f))))
         fail("TetGen split the surface despite -Y: boundary face (" + std::to_string(boundary(0, f)) + ", " +
-             std::to_string(boundary(1, f)) + ", " + std::to_string(boundary(2, f)) + ") is not an input triangle" + where);
+             std::to_string(boundary(1, f)) + ", " + std::to_string(boundary(2, f)) + ") is not an input triangle" +
+             where);
   }
   if (quality) *quality = measureQuality(mesh);
   return mesh;

@@ -1,5 +1,5 @@
-#include "mesh/Barycentric.hpp"
 #include "mesh/TissueBoolean.hpp"
+#include "mesh/Barycentric.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
@@ -67,8 +67,7 @@ Mesh toCgal(const SurfaceMesh& s, int firstOrigin, const std::string& name) {
     }
     if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) fail("triangle " + std::to_string(t) + " is degenerate");
     const Face f = m.add_face(v[0], v[1], v[2]);
-    if (f == Mesh::null_face())
-      fail("not manifold or not consistently oriented at triangle " + std::to_string(t));
+    if (f == Mesh::null_face()) fail("not manifold or not consistently oriented at triangle " + std::to_string(t));
     origin[f] = firstOrigin + t;
   }
   if (!CGAL::is_closed(m)) {
@@ -80,7 +79,6 @@ Mesh toCgal(const SurfaceMesh& s, int firstOrigin, const std::string& name) {
   if (PMP::volume(m) <= 0) fail("faces inward (negative volume); checkSurface turns it outward");
   return m;
 }
-
 
 // CGAL's corefinement orders its output by internal maps whose order can change from one call to
 // the next within a process (the same surface, listed differently); simplification depends on the
@@ -175,12 +173,14 @@ LabelledSurface subtractSurfaces(const SurfaceMesh& envelope, const std::vector<
   s.triangles.resize(3, tissue.number_of_faces());
   out.label.resize(tissue.number_of_faces());
   if (envelope.hasUv())
-    out.cornerUv = Eigen::Matrix2Xd::Constant(2, 3 * tissue.number_of_faces(), std::numeric_limits<double>::quiet_NaN());
+    out.cornerUv =
+        Eigen::Matrix2Xd::Constant(2, 3 * tissue.number_of_faces(), std::numeric_limits<double>::quiet_NaN());
   std::vector<int> facesPerSolid(numSolids, 0);
   int t = 0;
   for (auto f : tissue.faces()) {
     int c = 0;
-    for (auto v : CGAL::vertices_around_face(tissue.halfedge(f), tissue)) s.triangles(c++, t) = static_cast<int>(v.idx());
+    for (auto v : CGAL::vertices_around_face(tissue.halfedge(f), tissue))
+      s.triangles(c++, t) = static_cast<int>(v.idx());
     const int o = origin[f];
     if (o < 0) throw std::logic_error("subtractSurfaces: a result triangle lost its origin");
     const int input = inputOf(o);

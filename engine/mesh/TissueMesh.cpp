@@ -72,7 +72,8 @@ TissueMeshResult buildTissueMesh(const SurfaceMesh& envelope, const std::vector<
     if (coarse.label[t] != 0) continue;
     Eigen::Vector3i f;
     for (int c = 0; c < 3; ++c) {
-      const Eigen::Vector2d uv = coarse.hasUv() ? Eigen::Vector2d(coarse.cornerUv.col(3 * t + c)) : Eigen::Vector2d::Zero();
+      const Eigen::Vector2d uv =
+          coarse.hasUv() ? Eigen::Vector2d(coarse.cornerUv.col(3 * t + c)) : Eigen::Vector2d::Zero();
       const auto [it, inserted] =
           vertexOf.emplace(std::make_tuple(F(c, t), uv.x(), uv.y()), static_cast<int>(r.skinVertexNode.size()));
       if (inserted) r.skinVertexNode.push_back(F(c, t)), skinUv.push_back(uv);

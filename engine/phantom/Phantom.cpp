@@ -40,11 +40,13 @@ Phantom makePhantom(const PhantomOptions& o) {
 
   const phantom::MandibleModel mandible;
   p.mandible = mandible.mesh(o.edgeLength);
-  for (int i = 0; i < p.mandible.numVertices(); ++i) p.mandible.vertices.col(i) = phantom::mandibleMap(shape, p.mandible.vertices.col(i));
+  for (int i = 0; i < p.mandible.numVertices(); ++i)
+    p.mandible.vertices.col(i) = phantom::mandibleMap(shape, p.mandible.vertices.col(i));
 
   p.skin = phantom::meshStarSurface(phantom::skinSpec(o.edgeLength));
   phantom::addSkinUv(p.skin);  // from the class I positions: the texture's features stay on the face
-  for (int i = 0; i < p.skin.numVertices(); ++i) p.skin.vertices.col(i) = phantom::lowerFaceMap(shape, p.skin.vertices.col(i));
+  for (int i = 0; i < p.skin.numVertices(); ++i)
+    p.skin.vertices.col(i) = phantom::lowerFaceMap(shape, p.skin.vertices.col(i));
 
   phantom::CavityShape cavity;
   cavity.upperLabialX = phantom::upperCrownTip(0).x() - phantom::upperTeeth()[0].halfThickness;

@@ -27,7 +27,7 @@ struct Landmark {
 
 struct PhantomVariant {
   int index = 0;
-  std::string name;         // "class-I", "class-II", "class-III", "asymmetric", "long-face"
+  std::string name;  // "class-I", "class-II", "class-III", "asymmetric", "long-face"
   std::string description;
 };
 

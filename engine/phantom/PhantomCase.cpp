@@ -13,8 +13,9 @@ nlohmann::json phantomCaseJson(const Phantom& p) {
           {"name", "phantom " + p.variant.name},
           {"frame", {{"anterior", {-1, 0, 0}}, {"superior", {0, 0, 1}}, {"right", {0, 1, 0}}}},
           {"tissue", {{"skin", "skin.obj"}, {"cavities", {"oral_cavity.stl"}}, {"texture", "skin.jpg"}}},
-          {"bones", {{{"name", "skull"}, {"surface", "skull.stl"}, {"fixed", true}},
-                     {{"name", "mandible"}, {"surface", "mandible.stl"}}}},
+          {"bones",
+           {{{"name", "skull"}, {"surface", "skull.stl"}, {"fixed", true}},
+            {{"name", "mandible"}, {"surface", "mandible.stl"}}}},
           {"landmarks", "landmarks.json"},
           {"cuts", {{{"template", "le_fort_1"}, {"bone", "skull"}}, {{"template", "bsso"}, {"bone", "mandible"}}}},
           // Where clinicians look: lips, nose and chin get three and two times the skin density.

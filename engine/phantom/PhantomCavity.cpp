@@ -21,8 +21,8 @@ constexpr double kWallRamp = 2.5;     // half length (x) over which the slit ope
 
 // Half width of the air behind the lips: buccal faces of the crowns plus a few mm of vestibule.
 double fullHalfWidth(double x) {
-  static const std::vector<std::pair<double, double>> t = {{-92, 22}, {-84, 23}, {-76, 27}, {-68, 32},
-                                                           {-58, 35}, {-48, 35}, {-40, 35}, {-32, 34}, {-24, 30}};
+  static const std::vector<std::pair<double, double>> t = {{-92, 22}, {-84, 23}, {-76, 27}, {-68, 32}, {-58, 35},
+                                                           {-48, 35}, {-40, 35}, {-32, 34}, {-24, 30}};
   if (x <= t.front().first) return t.front().second;
   for (size_t i = 1; i < t.size(); ++i)
     if (x <= t[i].first)
@@ -54,7 +54,8 @@ Section sectionAt(const CavityShape& c, double x) {
   s.down = s.zPole - (c.slitZ - kSlitHalf + (zBot - c.slitZ + kSlitHalf) * tl);
   double e = 1;
   if (x > kBackX - kBackRound) e = std::sqrt(std::max(0.0, 1 - std::pow((x - (kBackX - kBackRound)) / kBackRound, 2)));
-  if (x < kFrontX + kFrontRound) e = std::sqrt(std::max(0.0, 1 - std::pow((kFrontX + kFrontRound - x) / kFrontRound, 2)));
+  if (x < kFrontX + kFrontRound)
+    e = std::sqrt(std::max(0.0, 1 - std::pow((kFrontX + kFrontRound - x) / kFrontRound, 2)));
   s.up *= e, s.down *= e;
   return s;
 }
@@ -64,7 +65,8 @@ Section sectionAt(const CavityShape& c, double x) {
 std::vector<Eigen::Vector3d> side(double x, const Section& s, double amp) {
   std::vector<Eigen::Vector3d> pts;
   const double a = std::abs(amp);
-  const double rl = std::min({6.0, 0.5 * s.wLeft, std::max(a, 0.5)}), rr = std::min({6.0, 0.5 * s.wRight, std::max(a, 0.5)});
+  const double rl = std::min({6.0, 0.5 * s.wLeft, std::max(a, 0.5)}),
+               rr = std::min({6.0, 0.5 * s.wRight, std::max(a, 0.5)});
   const int nc = 10;
   for (int k = 0; k <= nc; ++k) {
     const double t = k * kPi / 2 / nc;

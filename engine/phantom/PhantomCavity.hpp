@@ -10,10 +10,10 @@
 namespace orthosim::phantom {
 
 struct CavityShape {
-  double upperLabialX;  // labial face of the upper incisor crowns (mm)
-  double lowerLabialX;  // labial face of the lower incisor crowns, as the variant puts them
-  VariantShape variant; // how far the lower arch moved (its crowns must stay in the air)
-  double slitZ;         // height of the mouth slit (where the variant puts the stomion)
+  double upperLabialX;   // labial face of the upper incisor crowns (mm)
+  double lowerLabialX;   // labial face of the lower incisor crowns, as the variant puts them
+  VariantShape variant;  // how far the lower arch moved (its crowns must stay in the air)
+  double slitZ;          // height of the mouth slit (where the variant puts the stomion)
 };
 
 SurfaceMesh makeOralCavity(const CavityShape& shape, double edgeLength);

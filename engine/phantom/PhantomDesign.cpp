@@ -22,12 +22,18 @@ double frontWeight(double x) { return smoothstep(-30.0, -68.0, x); }
 
 VariantShape variantShape(int variant) {
   switch (variant) {
-    case 0: return {};
-    case 1: return {-5.5, 0, 0, 0};          // retrognathic: overjet about 8 mm
-    case 2: return {6.0, 0, 0, 0};           // prognathic: lower incisors 3.5 mm ahead
-    case 3: return {0, 7.0, 0, 0};           // chin 7 mm to the right
-    case 4: return {0, 0, 3.0, 5.0};         // clockwise rotation and long symphysis: open bite
-    default: throw std::invalid_argument("phantom: unknown variant " + std::to_string(variant) + " (0-4)");
+    case 0:
+      return {};
+    case 1:
+      return {-5.5, 0, 0, 0};  // retrognathic: overjet about 8 mm
+    case 2:
+      return {6.0, 0, 0, 0};  // prognathic: lower incisors 3.5 mm ahead
+    case 3:
+      return {0, 7.0, 0, 0};  // chin 7 mm to the right
+    case 4:
+      return {0, 0, 3.0, 5.0};  // clockwise rotation and long symphysis: open bite
+    default:
+      throw std::invalid_argument("phantom: unknown variant " + std::to_string(variant) + " (0-4)");
   }
 }
 
@@ -42,8 +48,8 @@ Eigen::Vector3d mandibleMap(const VariantShape& v, const Eigen::Vector3d& p0) {
     // About the condylar (y) axis; negative angle about +y turns the chin down and back.
     const double a = -v.openRotation * kPi / 180;
     const Eigen::Vector3d q = p - kCondyleAxisPoint;
-    p = kCondyleAxisPoint + Eigen::Vector3d(std::cos(a) * q.x() + std::sin(a) * q.z(), q.y(),
-                                            -std::sin(a) * q.x() + std::cos(a) * q.z());
+    p = kCondyleAxisPoint +
+        Eigen::Vector3d(std::cos(a) * q.x() + std::sin(a) * q.z(), q.y(), -std::sin(a) * q.x() + std::cos(a) * q.z());
   }
   return p;
 }
@@ -57,18 +63,20 @@ Eigen::Vector3d lowerFaceMap(const VariantShape& v, const Eigen::Vector3d& p) {
 double occlusalZ(double x) { return kStomionZ + kOcclusalSlope * (x + 82.0); }
 
 const std::vector<Tooth>& upperTeeth() {
-  static const std::vector<Tooth> t = {{"central_incisor", 0.0, 8.6, 10.5, 3.4},  {"lateral_incisor", 8.6, 15.2, 9.0, 3.0},
-                                       {"canine", 15.2, 22.8, 10.0, 4.0},         {"first_premolar", 22.8, 29.9, 8.5, 4.5},
-                                       {"second_premolar", 29.9, 36.6, 7.5, 4.5}, {"first_molar", 36.6, 47.0, 7.5, 5.5},
-                                       {"second_molar", 47.0, 56.3, 7.0, 5.3}};
+  static const std::vector<Tooth> t = {
+      {"central_incisor", 0.0, 8.6, 10.5, 3.4},  {"lateral_incisor", 8.6, 15.2, 9.0, 3.0},
+      {"canine", 15.2, 22.8, 10.0, 4.0},         {"first_premolar", 22.8, 29.9, 8.5, 4.5},
+      {"second_premolar", 29.9, 36.6, 7.5, 4.5}, {"first_molar", 36.6, 47.0, 7.5, 5.5},
+      {"second_molar", 47.0, 56.3, 7.0, 5.3}};
   return t;
 }
 
 const std::vector<Tooth>& lowerTeeth() {
-  static const std::vector<Tooth> t = {{"central_incisor", 0.0, 5.4, 9.0, 3.0},   {"lateral_incisor", 5.4, 11.3, 9.5, 3.0},
-                                       {"canine", 11.3, 18.2, 11.0, 3.8},         {"first_premolar", 18.2, 25.2, 8.5, 3.8},
-                                       {"second_premolar", 25.2, 32.4, 8.0, 4.0}, {"first_molar", 32.4, 43.6, 7.5, 5.0},
-                                       {"second_molar", 43.6, 54.1, 7.0, 5.0}};
+  static const std::vector<Tooth> t = {
+      {"central_incisor", 0.0, 5.4, 9.0, 3.0},   {"lateral_incisor", 5.4, 11.3, 9.5, 3.0},
+      {"canine", 11.3, 18.2, 11.0, 3.8},         {"first_premolar", 18.2, 25.2, 8.5, 3.8},
+      {"second_premolar", 25.2, 32.4, 8.0, 4.0}, {"first_molar", 32.4, 43.6, 7.5, 5.0},
+      {"second_molar", 43.6, 54.1, 7.0, 5.0}};
   return t;
 }
 
@@ -99,7 +107,9 @@ double blended(const std::vector<Tooth>& teeth, double s, double Tooth::*field) 
 }  // namespace
 
 double crownHeight(const std::vector<Tooth>& teeth, double s) { return blended(teeth, s, &Tooth::height); }
-double crownHalfThickness(const std::vector<Tooth>& teeth, double s) { return blended(teeth, s, &Tooth::halfThickness); }
+double crownHalfThickness(const std::vector<Tooth>& teeth, double s) {
+  return blended(teeth, s, &Tooth::halfThickness);
+}
 
 Eigen::Vector2d archPoint(double a, double b, double phi) {
   const double c = std::cos(phi) / a, s = std::sin(phi) / b;

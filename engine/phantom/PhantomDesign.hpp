@@ -10,10 +10,10 @@ namespace orthosim::phantom {
 // How a variant differs from class I: all of it happens to the mandible (the maxilla is the same
 // in every variant), and the lower face follows.
 struct VariantShape {
-  double advance = 0;         // chin and lower arch forward (-x), mm; negative: set back
-  double chinShift = 0;       // chin and lower arch towards +y (patient's right), mm
-  double openRotation = 0;    // mandible turned down and back about the condyles, degrees
-  double anteriorStretch = 0; // extra anterior lower face height (symphysis taller), mm
+  double advance = 0;          // chin and lower arch forward (-x), mm; negative: set back
+  double chinShift = 0;        // chin and lower arch towards +y (patient's right), mm
+  double openRotation = 0;     // mandible turned down and back about the condyles, degrees
+  double anteriorStretch = 0;  // extra anterior lower face height (symphysis taller), mm
 };
 VariantShape variantShape(int variant);  // throws std::invalid_argument for an unknown index
 
@@ -26,7 +26,7 @@ Eigen::Vector3d lowerFaceMap(const VariantShape& v, const Eigen::Vector3d& p);
 // Height of the occlusal plane at x (mm): the gap between the arches is centred on it.
 double occlusalZ(double x);
 constexpr double kOcclusalSlope = 0.12;  // rises 0.12 mm per mm towards the back
-constexpr double kToothGap = 1.5;  // vertical gap between upper and lower crowns in class I
+constexpr double kToothGap = 1.5;        // vertical gap between upper and lower crowns in class I
 
 // A tooth along an arch: arc length of its mesial and distal ends from the midline, crown height
 // (cervical line to tip) and crown half thickness (bucco-lingual / 2).

@@ -14,7 +14,7 @@ namespace orthosim::phantom {
 namespace {
 
 constexpr double kEndRound = 6.0;  // mm over which the sections thin to the posterior border
-constexpr double kSpineA = 30.0;    // x semi-axis of the spine's front part (dental arch: 38.5)
+constexpr double kSpineA = 30.0;   // x semi-axis of the spine's front part (dental arch: 38.5)
 
 using Table = std::vector<std::pair<double, double>>;
 
@@ -45,9 +45,9 @@ double spline(const Table& t, double x) {
 }
 
 // The ramus outline, by distance from the posterior border: condyle, notch, coronoid, anterior border.
-const Table kRamusTop = {{0, 0.0},    {3, -0.5},   {6, -3.5},   {10, -12.0}, {14, -17.0}, {18, -13.5},
-                         {22, -9.0},  {24.5, -8.5}, {28, -13.0}, {33, -25.0}, {39, -40.0}, {44, -48.0}};
-const Table kBottom = {{0, -85.0}, {8, -84.7}, {18, -82.8}, {30, -79.5}, {44, -75.0},
+const Table kRamusTop = {{0, 0.0},   {3, -0.5},    {6, -3.5},   {10, -12.0}, {14, -17.0}, {18, -13.5},
+                         {22, -9.0}, {24.5, -8.5}, {28, -13.0}, {33, -25.0}, {39, -40.0}, {44, -48.0}};
+const Table kBottom = {{0, -85.0},  {8, -84.7},  {18, -82.8}, {30, -79.5}, {44, -75.0},
                        {56, -71.0}, {66, -67.0}, {80, -62.0}, {200, -56.0}};
 const Table kCrownTilt = {{0, 1.2}, {8, 0.9}, {18, 0.4}, {30, 0.0}};  // incisors lean forward
 const Table kBodyHalf = {{0, 6.5}, {8, 6.4}, {18, 6.2}, {30, 6.0}, {44, 6.3}, {56, 6.0}, {66, 4.0}, {80, 3.8}};
@@ -59,7 +59,8 @@ const std::vector<Eigen::Vector2d>& spineControl() {
     std::vector<Eigen::Vector2d> p;
     // Through the symphysis, wider than the dental arch in front: section planes then meet well
     // behind the lingual cortex (no folding); the crowns sit labially of it.
-    for (double deg : {0.0, 15.0, 30.0, 45.0, 60.0, 75.0}) p.push_back(archPoint(kSpineA, kLowerArchB, deg * kPi / 180));
+    for (double deg : {0.0, 15.0, 30.0, 45.0, 60.0, 75.0})
+      p.push_back(archPoint(kSpineA, kLowerArchB, deg * kPi / 180));
     for (const auto& q : {Eigen::Vector2d(-33, 31), Eigen::Vector2d(-24, 37.5), Eigen::Vector2d(-14, 42.5),
                           Eigen::Vector2d(-5, 45.5), Eigen::Vector2d(3, 47)})
       p.push_back(q);
@@ -127,8 +128,8 @@ double MandibleModel::toothS(double s) const { return lookup(toothS_, s); }
 
 Eigen::Vector2d MandibleModel::spine(double s) const {
   s = std::clamp(s, spineS_.front(), spineS_.back());
-  const size_t i = std::clamp<size_t>(std::upper_bound(spineS_.begin(), spineS_.end(), s) - spineS_.begin(), 1,
-                                      spineS_.size() - 1);
+  const size_t i =
+      std::clamp<size_t>(std::upper_bound(spineS_.begin(), spineS_.end(), s) - spineS_.begin(), 1, spineS_.size() - 1);
   const double w = (s - spineS_[i - 1]) / (spineS_[i] - spineS_[i - 1]);
   return spinePts_[i - 1] + w * (spinePts_[i] - spinePts_[i - 1]);
 }

@@ -30,11 +30,11 @@ class MandibleModel {
   void profile(double s, double z, double& centre, double& half) const;
   double roundFactor(double s, double z) const;
   double lookup(const std::vector<double>& table, double s) const;  // tabulated by |s|
-  double toothS(double s) const;      // arch length along the lower dental arch of the crown at s
+  double toothS(double s) const;  // arch length along the lower dental arch of the crown at s
   double crownTipZ(double s) const;
   static constexpr double kCrownStep = 0.25;
   std::vector<double> crownOffset_, toothS_;
-  double teethEnd_ = 0;               // |s| where the second molar ends
+  double teethEnd_ = 0;  // |s| where the second molar ends
   std::vector<Eigen::Vector2d> spinePts_;
   std::vector<double> spineS_;
   double halfLength_ = 0;

@@ -8,11 +8,10 @@
 #include "phantom/ImplicitShapes.hpp"
 
 namespace orthosim::phantom {
-namespace {
-}
+namespace {}
 
 double skinField(const Eigen::Vector3d& p) {
-  const Eigen::Vector3d m(p.x(), std::abs(p.y()), p.z());  // symmetric: model the right half
+  const Eigen::Vector3d m(p.x(), std::abs(p.y()), p.z());                        // symmetric: model the right half
   double f = roundedBoxField(p, {-30, 0, 12}, {66, 69, 60});                     // upper head and brows
   f = smoothUnion(f, roundedBoxField(p, {-38, 0, -53}, {50, 60, 40}), 14);       // lower face over the mandible
   f = smoothUnion(f, roundedBoxField(p, {-12, 0, -100}, {42, 50, 30}), 16);      // upper neck
@@ -20,10 +19,10 @@ double skinField(const Eigen::Vector3d& p) {
   f = smoothUnion(f, roundedBoxField(p, {-84, 0, -37}, {13, 25, 12}), 6);        // upper lip
   f = smoothUnion(f, roundedBoxField(p, {-82, 0, -56}, {13, 23, 9}), 5);         // lower lip
   f = smoothUnion(f, ellipsoidField(p, {-76, 0, -76}, {16, 24, 16}), 8);         // chin
-  f = smoothUnion(f, capsuleField(p, {-95, 0, 24}, {-111, 0, -6}, 6.5), 5);     // nasal dorsum
-  f = smoothUnion(f, ellipsoidField(p, {-106, 0, -10}, {10, 11, 9}), 4);          // nasal tip
+  f = smoothUnion(f, capsuleField(p, {-95, 0, 24}, {-111, 0, -6}, 6.5), 5);      // nasal dorsum
+  f = smoothUnion(f, ellipsoidField(p, {-106, 0, -10}, {10, 11, 9}), 4);         // nasal tip
   f = smoothUnion(f, ellipsoidField(m, {-97, 13, -16}, {8, 8, 7}), 5);           // ala
-  f = smoothIntersection(f, -ellipsoidField(m, {-101, 32, 28}, {8, 15, 7}), 5); // eye
+  f = smoothIntersection(f, -ellipsoidField(m, {-101, 32, 28}, {8, 15, 7}), 5);  // eye
   return f;
 }
 
@@ -53,7 +52,8 @@ void addSkinUv(SurfaceMesh& skin) {
   std::vector<int> copyOf(n, -1);
   for (int t = 0; t < skin.numTriangles(); ++t) {
     double lo = 1, hi = 0;
-    for (int k = 0; k < 3; ++k) lo = std::min(lo, uv[skin.triangles(k, t)].x()), hi = std::max(hi, uv[skin.triangles(k, t)].x());
+    for (int k = 0; k < 3; ++k)
+      lo = std::min(lo, uv[skin.triangles(k, t)].x()), hi = std::max(hi, uv[skin.triangles(k, t)].x());
     if (hi - lo < 0.5) continue;
     for (int k = 0; k < 3; ++k) {
       const int v = skin.triangles(k, t);

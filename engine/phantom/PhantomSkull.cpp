@@ -37,13 +37,13 @@ Eigen::Vector3d upperCrownTip(double s) {
 
 double skullField(const Eigen::Vector3d& p) {
   const double yAbs = std::abs(p.y());
-  const Eigen::Vector3d m(p.x(), yAbs, p.z());  // symmetric: model the right half
-  double f = smoothUnion(roundedBoxField(p, {-30, 0, 30}, {60, 64, 30}),     // cranium, cut below the vertex
-                         roundedBoxField(p, {-58, 0, -10}, {26, 33, 30}), 10);  // maxilla and midface
-  f = smoothUnion(f, ellipsoidField(m, {-64, 47, 3}, {14, 16, 11}), 6);       // zygoma
-  f = smoothUnion(f, capsuleField(p, {-86, 0, 27}, {-94, 0, 14}, 4.0), 4);   // nasal bones
-  f = smoothUnion(f, ellipsoidField(p, {-83, 0, -17}, {6.5, 6, 4.5}), 3);     // anterior nasal spine
-  f = std::min(f, ellipsoidField(m, {-3, 49, 10.5}, {11, 13, 8}));           // glenoid fossa roof
+  const Eigen::Vector3d m(p.x(), yAbs, p.z());                                    // symmetric: model the right half
+  double f = smoothUnion(roundedBoxField(p, {-30, 0, 30}, {60, 64, 30}),          // cranium, cut below the vertex
+                         roundedBoxField(p, {-58, 0, -10}, {26, 33, 30}), 10);    // maxilla and midface
+  f = smoothUnion(f, ellipsoidField(m, {-64, 47, 3}, {14, 16, 11}), 6);           // zygoma
+  f = smoothUnion(f, capsuleField(p, {-86, 0, 27}, {-94, 0, 14}, 4.0), 4);        // nasal bones
+  f = smoothUnion(f, ellipsoidField(p, {-83, 0, -17}, {6.5, 6, 4.5}), 3);         // anterior nasal spine
+  f = std::min(f, ellipsoidField(m, {-3, 49, 10.5}, {11, 13, 8}));                // glenoid fossa roof
   f = smoothIntersection(f, -ellipsoidField(m, {-92, 32, 24}, {12, 16, 13}), 4);  // orbit
   // The crown ridge ends 10 mm above the cervical line (about z = -25): skip it well above that.
   return p.z() > -18.0 ? f : smoothUnion(f, upperArchField(p), 2.5);

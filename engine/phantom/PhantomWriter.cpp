@@ -54,7 +54,8 @@ void writePhantom(const Phantom& p, const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) throw std::runtime_error(dir + ": cannot create the directory" + (ec ? ": " + ec.message() : ""));
+  if (ec || !fs::is_directory(dir))
+    throw std::runtime_error(dir + ": cannot create the directory" + (ec ? ": " + ec.message() : ""));
   const fs::path d(dir);
   exportSurface(p.skin, (d / "skin.obj").string());
   exportSurface(p.skull, (d / "skull.stl").string());

@@ -89,7 +89,8 @@ Eigen::Vector3d starPoint(const StarSurfaceSpec& s, const Eigen::Vector3d& towar
 SurfaceMesh meshStarSurface(const StarSurfaceSpec& s) {
   // Frequency so that the spread ellipsoid gets triangles of about the target edge.
   const double triangleArea = std::sqrt(3.0) / 4 * s.edgeLength * s.edgeLength;
-  const int freq = std::max(2, static_cast<int>(std::lround(std::sqrt(ellipsoidArea(s.spreadAxes) / triangleArea / 20))));
+  const int freq =
+      std::max(2, static_cast<int>(std::lround(std::sqrt(ellipsoidArea(s.spreadAxes) / triangleArea / 20))));
   const UnitSphereMesh sphere = makeGeodesicSphere(freq);
   const int n = static_cast<int>(sphere.directions.cols());
 
@@ -109,7 +110,8 @@ SurfaceMesh meshStarSurface(const StarSurfaceSpec& s) {
     }
     x.col(i) = s.centre + r[i] * d;
   }
-  if (failed >= 0) starRadius(s, (s.spreadCentre + s.spreadAxes.cwiseProduct(sphere.directions.col(failed)) - s.centre).normalized());
+  if (failed >= 0)
+    starRadius(s, (s.spreadCentre + s.spreadAxes.cwiseProduct(sphere.directions.col(failed)) - s.centre).normalized());
   const Eigen::Matrix3Xi& tri = sphere.triangles;
   const int m = static_cast<int>(tri.cols());
   for (int t = 0; t < m; ++t)

@@ -15,11 +15,11 @@ using Field = std::function<double(const Eigen::Vector3d&)>;  // mm, negative in
 
 struct StarSurfaceSpec {
   Field field;
-  Eigen::Vector3d centre;            // inside; every ray from here leaves the solid once
-  Eigen::AlignedBox3d bounds;        // contains the solid
-  Eigen::Vector3d spreadCentre;      // an ellipsoid shaped roughly like the solid: the initial
-  Eigen::Vector3d spreadAxes;        //   vertices are even on it, so nearly even on the solid
-  double edgeLength = 1.5;           // mm
+  Eigen::Vector3d centre;        // inside; every ray from here leaves the solid once
+  Eigen::AlignedBox3d bounds;    // contains the solid
+  Eigen::Vector3d spreadCentre;  // an ellipsoid shaped roughly like the solid: the initial
+  Eigen::Vector3d spreadAxes;    //   vertices are even on it, so nearly even on the solid
+  double edgeLength = 1.5;       // mm
   int relaxIterations = 10;
 };
 

@@ -35,10 +35,12 @@ void stitch(const std::vector<int>& a, const std::vector<int>& b, bool flip, int
   auto add = [&](int p, int q, int r) { out.emplace_back(flip ? Eigen::Vector3i(p, r, q) : Eigen::Vector3i(p, q, r)); };
   while (i < na || j < nb) {
     bool advanceA = j == nb || (i < na && static_cast<double>(i + 1) / na <= static_cast<double>(j + 1) / nb);
-    if (flatSide == 2) advanceA = j == nb || (i < na - 1 && (i == 0 || advanceA));  // b flat: A first and last
+    if (flatSide == 2) advanceA = j == nb || (i < na - 1 && (i == 0 || advanceA));        // b flat: A first and last
     if (flatSide == 1) advanceA = j == nb - 1 ? i < na : (j != 0 && advanceA && i < na);  // a flat: B first and last
-    if (advanceA) add(a[i], a[i + 1], b[j]), ++i;
-    else add(a[i], b[j + 1], b[j]), ++j;
+    if (advanceA)
+      add(a[i], a[i + 1], b[j]), ++i;
+    else
+      add(a[i], b[j + 1], b[j]), ++j;
   }
 }
 
@@ -52,8 +54,14 @@ SurfaceMesh meshSweep(const std::vector<SweepSection>& sections, double h) {
   auto addPoints = [&](const std::vector<Eigen::Vector3d>& p, int firstId, int lastId) {
     std::vector<int> ids;
     for (size_t i = 0; i < p.size(); ++i) {
-      if (i == 0 && firstId >= 0) { ids.push_back(firstId); continue; }
-      if (i + 1 == p.size() && lastId >= 0) { ids.push_back(lastId); continue; }
+      if (i == 0 && firstId >= 0) {
+        ids.push_back(firstId);
+        continue;
+      }
+      if (i + 1 == p.size() && lastId >= 0) {
+        ids.push_back(lastId);
+        continue;
+      }
       pts.push_back(p[i]);
       ids.push_back(static_cast<int>(pts.size()) - 1);
     }

@@ -27,7 +27,8 @@ double positiveDet(const Eigen::Matrix3d& F, const char* caller) {
 }  // namespace
 
 NeoHookean NeoHookean::fromYoungPoisson(double E, double nu) {
-  if (!std::isfinite(E) || E <= 0) throw std::invalid_argument("Young's modulus must be positive, got " + std::to_string(E));
+  if (!std::isfinite(E) || E <= 0)
+    throw std::invalid_argument("Young's modulus must be positive, got " + std::to_string(E));
   if (!std::isfinite(nu) || nu <= -1.0 || nu >= 0.5)
     throw std::invalid_argument("Poisson's ratio must lie in (-1, 0.5), got " + std::to_string(nu));
   NeoHookean m;
@@ -63,7 +64,9 @@ Matrix9d NeoHookean::stressDerivative(const Eigen::Matrix3d& F, bool projectToPS
     // most elements skip the SVD. With lambda >= 0, D > 0 suffices. With lambda < 0 (Poisson's ratio
     // below 0) w w^T lowers K: then K > 0 exactly when D > 0 and 1 + lambda w^T D^-1 w > 0, where
     // w_i^2 / d_i = 1 / (mu s_i^2 + c).
-    Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>().computeDirect(F.transpose() * F, Eigen::EigenvaluesOnly).eigenvalues();
+    Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>()
+                             .computeDirect(F.transpose() * F, Eigen::EigenvaluesOnly)
+                             .eigenvalues();
     const double s0 = std::sqrt(std::max(ev[0], 0.0)), s1 = std::sqrt(std::max(ev[1], 0.0));
     needsProjection = std::abs(c) > 0.999 * mu * s0 * s1 || (c < 0 && -c > 0.999 * mu * s0 * s0);
     if (!needsProjection && lambda < 0) {
@@ -79,7 +82,8 @@ Matrix9d NeoHookean::stressDerivative(const Eigen::Matrix3d& F, bool projectToPS
       for (int j = 0; j < 3; ++j)
         for (int k = 0; k < 3; ++k)
           for (int i = 0; i < 3; ++i)
-            A(i + 3 * k, j + 3 * l) = lambda * G(i, k) * G(j, l) + c * G(i, l) * G(j, k) + (i == j && k == l ? mu : 0.0);
+            A(i + 3 * k, j + 3 * l) =
+                lambda * G(i, k) * G(j, l) + c * G(i, l) * G(j, k) + (i == j && k == l ? mu : 0.0);
     return A;
   }
 

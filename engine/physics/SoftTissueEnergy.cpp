@@ -98,7 +98,8 @@ Matrix12d SoftTissueEnergy::elementHessian(int e, const Eigen::Matrix3Xd& x, boo
   Eigen::Matrix<double, 9, 12> T;
   for (int b = 0; b < 4; ++b)
     for (int j = 0; j < 3; ++j)
-      for (int r = 0; r < 9; ++r) T(r, 3 * b + j) = A(r, j) * gN[b][0] + A(r, j + 3) * gN[b][1] + A(r, j + 6) * gN[b][2];
+      for (int r = 0; r < 9; ++r)
+        T(r, 3 * b + j) = A(r, j) * gN[b][0] + A(r, j + 3) * gN[b][1] + A(r, j + 6) * gN[b][2];
   Matrix12d H;
   const double V = volume_[e];
   for (int c = 0; c < 12; ++c)

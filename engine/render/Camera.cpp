@@ -17,8 +17,8 @@ double radians(double deg) { return deg * kPi / 180.0; }
 Eigen::Vector3d Camera::viewDirection() const {
   const double az = radians(azimuthDeg), el = radians(elevationDeg);
   // The eye sits at target + distance * offset; the camera looks back along it.
-  const Eigen::Vector3d offset = std::cos(el) * (std::cos(az) * frame.anterior + std::sin(az) * frame.right) +
-                                 std::sin(el) * frame.superior;
+  const Eigen::Vector3d offset =
+      std::cos(el) * (std::cos(az) * frame.anterior + std::sin(az) * frame.right) + std::sin(el) * frame.superior;
   return -offset.normalized();
 }
 

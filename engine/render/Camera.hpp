@@ -20,7 +20,7 @@ struct ProjectedPoint {
 struct Camera {
   AnatomicalFrame frame;
   Eigen::Vector3d target = Eigen::Vector3d::Zero();  // mm, what the camera looks at
-  double distance = 500;       // mm from the target
+  double distance = 500;                             // mm from the target
   double azimuthDeg = 0;
   double elevationDeg = 0;     // kept within +-89 degrees: the up vector stays defined
   double fieldOfViewDeg = 30;  // vertical
@@ -28,8 +28,8 @@ struct Camera {
 
   Eigen::Vector3d viewDirection() const;  // unit, from the eye towards the target
   Eigen::Vector3d eye() const { return target - distance * viewDirection(); }
-  Eigen::Vector3d up() const;             // unit, the image's upward direction
-  Eigen::Vector3d right() const;          // unit, the image's rightward direction
+  Eigen::Vector3d up() const;     // unit, the image's upward direction
+  Eigen::Vector3d right() const;  // unit, the image's rightward direction
   double nearPlane() const;
   double farPlane() const;
 
@@ -43,8 +43,8 @@ struct Camera {
   double mmPerPixel(int height) const;
 
   void orbit(double dAzimuthDeg, double dElevationDeg);
-  void zoom(double factor);                 // > 1 moves closer (distance / factor)
-  void pan(double rightMm, double upMm);    // moves the target in the image plane
+  void zoom(double factor);               // > 1 moves closer (distance / factor)
+  void pan(double rightMm, double upMm);  // moves the target in the image plane
 };
 
 }  // namespace orthosim::render

@@ -9,7 +9,9 @@ namespace {
 Eigen::Matrix3Xd centroids(const SurfaceMesh& m) {
   Eigen::Matrix3Xd c(3, m.numTriangles());
   for (int t = 0; t < m.numTriangles(); ++t)
-    c.col(t) = (m.vertices.col(m.triangles(0, t)) + m.vertices.col(m.triangles(1, t)) + m.vertices.col(m.triangles(2, t))) / 3.0;
+    c.col(t) =
+        (m.vertices.col(m.triangles(0, t)) + m.vertices.col(m.triangles(1, t)) + m.vertices.col(m.triangles(2, t))) /
+        3.0;
   return c;
 }
 
@@ -30,8 +32,10 @@ SurfaceMesh piece(const SurfaceMesh& bone, const std::vector<int>& fragmentOf, i
   }
   SurfaceMesh out;
   out.vertices.resize(3, static_cast<Eigen::Index>(vertices.size()));
-  for (size_t i = 0; i < vertices.size(); ++i) out.vertices.col(static_cast<Eigen::Index>(i)) = bone.vertices.col(vertices[i]);
-  out.triangles = Eigen::Map<const Eigen::Matrix3Xi>(triangles.data(), 3, static_cast<Eigen::Index>(triangles.size() / 3));
+  for (size_t i = 0; i < vertices.size(); ++i)
+    out.vertices.col(static_cast<Eigen::Index>(i)) = bone.vertices.col(vertices[i]);
+  out.triangles =
+      Eigen::Map<const Eigen::Matrix3Xi>(triangles.data(), 3, static_cast<Eigen::Index>(triangles.size() / 3));
   return out;
 }
 
@@ -52,7 +56,8 @@ std::vector<BonePiece> caseBonePieces(const CaseModel& model) {
     const std::vector<int> fragmentOf = locateOnBone(groups, spec.regions, bone.name, centroids(surface));
     for (size_t f = 0; f < model.coupling.fragments.size(); ++f) {
       if (model.coupling.fragmentBone[f] != bone.name) continue;
-      BonePiece p{model.coupling.fragments[f], static_cast<int>(f), false, piece(surface, fragmentOf, static_cast<int>(f))};
+      BonePiece p{model.coupling.fragments[f], static_cast<int>(f), false,
+                  piece(surface, fragmentOf, static_cast<int>(f))};
       p.fixed = bone.fixed && p.fragment == bone.name;  // a fragment cut from a fixed bone moves
       if (p.surface.numTriangles() > 0) pieces.push_back(std::move(p));
     }

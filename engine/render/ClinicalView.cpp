@@ -15,13 +15,20 @@ struct ViewAngles {
 
 ViewAngles anglesOf(ClinicalView v) {
   switch (v) {
-    case ClinicalView::Frontal: return {0, 0};
-    case ClinicalView::Profile: return {90, 0};
-    case ClinicalView::ProfileLeft: return {-90, 0};
-    case ClinicalView::ThreeQuarter: return {45, 0};
-    case ClinicalView::ThreeQuarterLeft: return {-45, 0};
-    case ClinicalView::WormsEye: return {0, -45};
-    case ClinicalView::BirdsEye: return {0, 45};
+    case ClinicalView::Frontal:
+      return {0, 0};
+    case ClinicalView::Profile:
+      return {90, 0};
+    case ClinicalView::ProfileLeft:
+      return {-90, 0};
+    case ClinicalView::ThreeQuarter:
+      return {45, 0};
+    case ClinicalView::ThreeQuarterLeft:
+      return {-45, 0};
+    case ClinicalView::WormsEye:
+      return {0, -45};
+    case ClinicalView::BirdsEye:
+      return {0, 45};
   }
   return {0, 0};
 }
@@ -31,8 +38,8 @@ double tanHalf(double deg) { return std::tan(0.5 * deg * kPi / 180.0); }
 }  // namespace
 
 const std::vector<std::string>& clinicalViewNames() {
-  static const std::vector<std::string> names = {"frontal",   "profile",   "profile_left", "three_quarter",
-                                                 "three_quarter_left", "worms_eye", "birds_eye"};
+  static const std::vector<std::string> names = {
+      "frontal", "profile", "profile_left", "three_quarter", "three_quarter_left", "worms_eye", "birds_eye"};
   return names;
 }
 
@@ -56,7 +63,8 @@ void frameCamera(Camera& camera, const Eigen::Matrix3Xd& points, double aspect, 
   const Eigen::Vector3d centre = points.rowwise().mean();
   const Eigen::Matrix3Xd d = points.colwise() - centre;
   const Eigen::RowVectorXd x = r.transpose() * d, y = u.transpose() * d;
-  const Eigen::Vector3d target = centre + 0.5 * (x.maxCoeff() + x.minCoeff()) * r + 0.5 * (y.maxCoeff() + y.minCoeff()) * u;
+  const Eigen::Vector3d target =
+      centre + 0.5 * (x.maxCoeff() + x.minCoeff()) * r + 0.5 * (y.maxCoeff() + y.minCoeff()) * u;
   const Eigen::Matrix3Xd e = points.colwise() - target;
   const double tv = tanHalf(camera.fieldOfViewDeg) / (1 + margin), th = tv * aspect;
   double distance = 0;

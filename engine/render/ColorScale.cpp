@@ -20,7 +20,8 @@ std::vector<double> roundTicks(double min, double max) {
       break;
     }
   std::vector<double> ticks;
-  for (double v = std::ceil(min / step - 1e-9) * step; v <= max + 1e-9 * step; v += step) ticks.push_back(std::abs(v) < 1e-12 ? 0.0 : v);
+  for (double v = std::ceil(min / step - 1e-9) * step; v <= max + 1e-9 * step; v += step)
+    ticks.push_back(std::abs(v) < 1e-12 ? 0.0 : v);
   return ticks;
 }
 
@@ -60,8 +61,8 @@ ColorScale differenceScale(double rangeMm) {
   s.title = "difference (mm)";
   s.min = -rangeMm;
   s.max = rangeMm;
-  s.stops = {rgb(33, 102, 172), rgb(103, 169, 207), rgb(209, 229, 240), rgb(255, 255, 255),
-             rgb(253, 219, 199), rgb(239, 138, 98), rgb(178, 24, 43)};
+  s.stops = {rgb(33, 102, 172),  rgb(103, 169, 207), rgb(209, 229, 240), rgb(255, 255, 255),
+             rgb(253, 219, 199), rgb(239, 138, 98),  rgb(178, 24, 43)};
   s.ticks = roundTicks(s.min, s.max);
   return s;
 }

@@ -12,10 +12,10 @@
 namespace orthosim::render {
 
 struct ColorScale {
-  std::string title;                    // legend heading, with the unit
-  double min = 0, max = 1;              // values at the ramp's ends; beyond them the end colours
-  std::vector<Eigen::Vector3f> stops;   // evenly spaced over [min, max], RGB in [0, 1]
-  std::vector<double> ticks;            // labelled values
+  std::string title;                   // legend heading, with the unit
+  double min = 0, max = 1;             // values at the ramp's ends; beyond them the end colours
+  std::vector<Eigen::Vector3f> stops;  // evenly spaced over [min, max], RGB in [0, 1]
+  std::vector<double> ticks;           // labelled values
 
   Eigen::Vector3f colorAt(double value) const;
   // `n` colours evenly over [min, max], for the ramp texture.

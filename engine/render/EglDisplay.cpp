@@ -90,8 +90,9 @@ bool trySurfaceless(EglDisplay& out, std::string& log) {
 EglDisplay chooseDisplay() {
   const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (!clientExtensions)
-    throw RenderError("EGL is not available: no client extensions (is an EGL vendor library installed? "
-                      "Debian: libegl-mesa0 libgl1-mesa-dri)");
+    throw RenderError(
+        "EGL is not available: no client extensions (is an EGL vendor library installed? "
+        "Debian: libegl-mesa0 libgl1-mesa-dri)");
   EglDisplay d;
   std::string log;
   if (!hasExtension(clientExtensions, "EGL_EXT_platform_device"))
@@ -106,8 +107,9 @@ EglDisplay chooseDisplay() {
 }  // namespace
 
 const EGLint* coreContextAttributes() {
-  static const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  static const EGLint attributes[] = {
+      EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
   return attributes;
 }
 
@@ -115,17 +117,38 @@ std::string eglErrorString() {
   const EGLint e = eglGetError();
   const char* name = "unknown";
   switch (e) {
-    case EGL_SUCCESS: name = "EGL_SUCCESS"; break;
-    case EGL_NOT_INITIALIZED: name = "EGL_NOT_INITIALIZED"; break;
-    case EGL_BAD_ACCESS: name = "EGL_BAD_ACCESS"; break;
-    case EGL_BAD_ALLOC: name = "EGL_BAD_ALLOC"; break;
-    case EGL_BAD_ATTRIBUTE: name = "EGL_BAD_ATTRIBUTE"; break;
-    case EGL_BAD_CONFIG: name = "EGL_BAD_CONFIG"; break;
-    case EGL_BAD_CONTEXT: name = "EGL_BAD_CONTEXT"; break;
-    case EGL_BAD_DISPLAY: name = "EGL_BAD_DISPLAY"; break;
-    case EGL_BAD_MATCH: name = "EGL_BAD_MATCH"; break;
-    case EGL_BAD_PARAMETER: name = "EGL_BAD_PARAMETER"; break;
-    default: break;
+    case EGL_SUCCESS:
+      name = "EGL_SUCCESS";
+      break;
+    case EGL_NOT_INITIALIZED:
+      name = "EGL_NOT_INITIALIZED";
+      break;
+    case EGL_BAD_ACCESS:
+      name = "EGL_BAD_ACCESS";
+      break;
+    case EGL_BAD_ALLOC:
+      name = "EGL_BAD_ALLOC";
+      break;
+    case EGL_BAD_ATTRIBUTE:
+      name = "EGL_BAD_ATTRIBUTE";
+      break;
+    case EGL_BAD_CONFIG:
+      name = "EGL_BAD_CONFIG";
+      break;
+    case EGL_BAD_CONTEXT:
+      name = "EGL_BAD_CONTEXT";
+      break;
+    case EGL_BAD_DISPLAY:
+      name = "EGL_BAD_DISPLAY";
+      break;
+    case EGL_BAD_MATCH:
+      name = "EGL_BAD_MATCH";
+      break;
+    case EGL_BAD_PARAMETER:
+      name = "EGL_BAD_PARAMETER";
+      break;
+    default:
+      break;
   }
   char code[16];
   std::snprintf(code, sizeof code, "0x%04x", static_cast<unsigned>(e));

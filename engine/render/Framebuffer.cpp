@@ -80,7 +80,8 @@ std::vector<float> Framebuffer::readDepth() {
   glReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_FLOAT, bottomUp.data());
   checkGl("reading the depth back");
   for (int y = 0; y < height_; ++y)
-    std::memcpy(out.data() + static_cast<size_t>(y) * width_, bottomUp.data() + static_cast<size_t>(height_ - 1 - y) * width_,
+    std::memcpy(out.data() + static_cast<size_t>(y) * width_,
+                bottomUp.data() + static_cast<size_t>(height_ - 1 - y) * width_,
                 sizeof(float) * static_cast<size_t>(width_));
   return out;
 }

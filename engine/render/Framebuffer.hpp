@@ -30,8 +30,8 @@ class Framebuffer {
   void resolve(GLbitfield buffers);
 
   int width_, height_, samples_;
-  Target draw_;     // multisampled when samples_ > 1
-  Target resolved_; // only when samples_ > 1
+  Target draw_;      // multisampled when samples_ > 1
+  Target resolved_;  // only when samples_ > 1
   std::vector<unsigned char> rowScratch_;
 };
 

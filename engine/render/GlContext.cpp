@@ -9,7 +9,8 @@ namespace orthosim::render {
 GlContext::GlContext() : display_(headlessDisplay().display) {
   if (!eglBindAPI(EGL_OPENGL_API)) throw RenderError("EGL: no desktop OpenGL API: " + eglErrorString());
   context_ = eglCreateContext(display_, headlessDisplay().config, EGL_NO_CONTEXT, coreContextAttributes());
-  if (context_ == EGL_NO_CONTEXT) throw RenderError("EGL: cannot create an OpenGL 3.3 core context: " + eglErrorString());
+  if (context_ == EGL_NO_CONTEXT)
+    throw RenderError("EGL: cannot create an OpenGL 3.3 core context: " + eglErrorString());
   Binding bound(*this);
   description_ = std::string(reinterpret_cast<const char*>(glGetString(GL_RENDERER))) + ", OpenGL " +
                  reinterpret_cast<const char*>(glGetString(GL_VERSION)) + ", EGL " + headlessDisplay().platform;

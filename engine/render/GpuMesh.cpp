@@ -27,7 +27,8 @@ std::vector<int> weldByPosition(const Eigen::Matrix3Xd& v) {
   std::map<std::tuple<double, double, double>, int> first;
   std::vector<int> weld(static_cast<size_t>(v.cols()));
   for (Eigen::Index i = 0; i < v.cols(); ++i)
-    weld[static_cast<size_t>(i)] = first.emplace(std::make_tuple(v(0, i), v(1, i), v(2, i)), static_cast<int>(i)).first->second;
+    weld[static_cast<size_t>(i)] =
+        first.emplace(std::make_tuple(v(0, i), v(1, i), v(2, i)), static_cast<int>(i)).first->second;
   return weld;
 }
 
@@ -78,7 +79,8 @@ GpuMesh::GpuMesh(const SurfaceMesh& rest, const std::string& what)
   indices_ = newBuffer();
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.get());
   const Eigen::Matrix<unsigned, 3, Eigen::Dynamic> idx = triangles_.cast<unsigned>();
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(unsigned)), idx.data(), GL_STATIC_DRAW);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(unsigned)), idx.data(),
+               GL_STATIC_DRAW);
   glBindVertexArray(0);
   checkGl(what + ": uploading " + std::to_string(rest.numTriangles()) + " triangles");
 }
@@ -109,7 +111,8 @@ void GpuMesh::updatePositions(const Eigen::Matrix3Xd& x) {
   positions_ = x;
   fillNormals(x);
   glBindBuffer(GL_ARRAY_BUFFER, current_.get());
-  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(interleaved_.size() * sizeof(float)), interleaved_.data());
+  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(interleaved_.size() * sizeof(float)),
+                  interleaved_.data());
   checkGl(what_ + ": updating positions");
 }
 

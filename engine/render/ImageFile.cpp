@@ -2,10 +2,10 @@
 
 #include <turbojpeg.h>
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
-#include <algorithm>
 #include <iterator>
 #include <memory>
 #include <vector>

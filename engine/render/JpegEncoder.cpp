@@ -43,8 +43,8 @@ void JpegEncoder::encode(const RgbImage& image, std::vector<unsigned char>& out)
   }
   unsigned char* dst = buffer_;
   unsigned long size = capacity_;
-  if (tjCompress2(handle_, image.pixels.data(), image.width, 0, image.height, TJPF_RGB, &dst, &size, TJSAMP_420, quality_,
-                  TJFLAG_NOREALLOC | TJFLAG_FASTDCT) != 0)
+  if (tjCompress2(handle_, image.pixels.data(), image.width, 0, image.height, TJPF_RGB, &dst, &size, TJSAMP_420,
+                  quality_, TJFLAG_NOREALLOC | TJFLAG_FASTDCT) != 0)
     throw RenderError(std::string("JPEG encoding failed: ") + tjGetErrorStr2(handle_));
   out.assign(dst, dst + size);
 }

@@ -27,7 +27,8 @@ void addLegend(Overlay& overlay, const ColorScale& scale, const PixelRect& strip
   const int bands = 64;  // each band interpolates between two samples of the scale
   for (int k = 0; k < bands; ++k) {
     const double x0 = barX0 + (barX1 - barX0) * k / bands, x1 = barX0 + (barX1 - barX0) * (k + 1) / bands;
-    const double v0 = scale.min + (scale.max - scale.min) * k / bands, v1 = scale.min + (scale.max - scale.min) * (k + 1) / bands;
+    const double v0 = scale.min + (scale.max - scale.min) * k / bands,
+                 v1 = scale.min + (scale.max - scale.min) * (k + 1) / bands;
     overlay.gradient(x0, barY0, x1, barY1, opaque(scale.colorAt(v0)), opaque(scale.colorAt(v1)));
   }
   for (double t : scale.ticks) {

@@ -4,14 +4,13 @@
 #include "render/GlyphRects.hpp"
 #include "render/ShaderSources.hpp"
 
-
 namespace orthosim::render {
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 Overlay::Overlay()
-    : shader_("overlay", shaders::kOverlayVertex, shaders::kOverlayFragment), vao_(newVertexArray()), buffer_(newBuffer()) {
+    : shader_("overlay", shaders::kOverlayVertex, shaders::kOverlayFragment),
+      vao_(newVertexArray()),
+      buffer_(newBuffer()) {
   glBindVertexArray(vao_.get());
   glBindBuffer(GL_ARRAY_BUFFER, buffer_.get());
   const GLsizei stride = 6 * sizeof(float);
@@ -23,7 +22,8 @@ Overlay::Overlay()
   checkGl("overlay set-up");
 }
 
-void Overlay::gradient(double x0, double y0, double x1, double y1, const Eigen::Vector4f& left, const Eigen::Vector4f& right) {
+void Overlay::gradient(double x0, double y0, double x1, double y1, const Eigen::Vector4f& left,
+                       const Eigen::Vector4f& right) {
   auto vertex = [&](double x, double y, const Eigen::Vector4f& c) {
     vertices_.insert(vertices_.end(), {float(x), float(y), c[0], c[1], c[2], c[3]});
   };
@@ -32,12 +32,11 @@ void Overlay::gradient(double x0, double y0, double x1, double y1, const Eigen::
 }
 
 void Overlay::text(double x, double y, const std::string& s, double scale, const Eigen::Vector4f& color) {
-  for (const auto& r : glyphRects(s)) rect(x + scale * r[0], y + scale * r[1], x + scale * r[2], y + scale * r[3], color);
+  for (const auto& r : glyphRects(s))
+    rect(x + scale * r[0], y + scale * r[1], x + scale * r[2], y + scale * r[3], color);
 }
 
-double Overlay::textWidth(const std::string& s, double scale) {
-  return scale * glyphWidth(s);
-}
+double Overlay::textWidth(const std::string& s, double scale) { return scale * glyphWidth(s); }
 
 void Overlay::draw(int width, int height) {
   if (vertices_.empty()) return;
@@ -49,7 +48,8 @@ void Overlay::draw(int width, int height) {
   shader_.set("uViewport", Eigen::Vector2f(float(width), float(height)));
   glBindVertexArray(vao_.get());
   glBindBuffer(GL_ARRAY_BUFFER, buffer_.get());
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices_.size() * sizeof(float)), vertices_.data(), GL_STREAM_DRAW);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices_.size() * sizeof(float)), vertices_.data(),
+               GL_STREAM_DRAW);
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices_.size() / 6));
   glBindVertexArray(0);
   glDisable(GL_BLEND);

@@ -17,7 +17,9 @@ class Overlay {
   Overlay();
 
   void clear() { vertices_.clear(); }
-  void rect(double x0, double y0, double x1, double y1, const Eigen::Vector4f& color) { gradient(x0, y0, x1, y1, color, color); }
+  void rect(double x0, double y0, double x1, double y1, const Eigen::Vector4f& color) {
+    gradient(x0, y0, x1, y1, color, color);
+  }
   // A rectangle whose colour runs linearly from its left edge to its right edge.
   void gradient(double x0, double y0, double x1, double y1, const Eigen::Vector4f& left, const Eigen::Vector4f& right);
   // Text with its top-left corner at (x, y); `scale` pixels per font pixel (glyphs are 7 high).

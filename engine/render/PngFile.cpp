@@ -47,7 +47,8 @@ RgbImage readPng(const std::string& path) {
   png_image p;
   std::memset(&p, 0, sizeof p);
   p.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&p, path.c_str())) throw RenderError(path + ": not a readable PNG file: " + p.message);
+  if (!png_image_begin_read_from_file(&p, path.c_str()))
+    throw RenderError(path + ": not a readable PNG file: " + p.message);
   p.format = PNG_FORMAT_RGB;
   RgbImage image;
   image.width = static_cast<int>(p.width);

@@ -25,7 +25,7 @@ struct RenderOptions {
   ColorMap colorMap = ColorMap::None;
   double displacementMaxMm = 10.0;
   double differenceRangeMm = 3.0;
-  bool legend = true;        // with a colour map: its scale, drawn into the image
+  bool legend = true;  // with a colour map: its scale, drawn into the image
   // Before/after: the rest skin (and bones at rest) in the left half, the current one in the right
   // half, both through the same camera, labelled; the colour map applies to the "after" half.
   bool beforeAfter = false;

@@ -96,7 +96,8 @@ void Renderer::Impl::drawBones(bool atRest) {
   s.set("uSpecular", 0.08f);
   for (const BoneDraw& b : gpu->bones) {
     const bool posed = !atRest && b.fragment < static_cast<int>(gpu->poses.size());
-    s.set("uModel", posed ? poseMatrix(gpu->poses[static_cast<size_t>(b.fragment)]) : Eigen::Matrix4f::Identity().eval());
+    s.set("uModel",
+          posed ? poseMatrix(gpu->poses[static_cast<size_t>(b.fragment)]) : Eigen::Matrix4f::Identity().eval());
     s.set("uColor", withAlpha(b.color, 1.0f));
     b.mesh.draw();
   }
@@ -109,13 +110,16 @@ void Renderer::Impl::setSkinUniforms(const RenderOptions& o, bool atRest) {
   s.set("uAtRest", atRest ? 1 : 0);
   s.set("uSpecular", map == ColorMap::None ? 0.12f : 0.05f);
   s.set("uColor", withAlpha(kSkinTone, o.skinOpacity));
-  s.set("uValueSource", static_cast<int>(map == ColorMap::Displacement ? kDisplacement : map == ColorMap::Difference ? kScalar : kNoValue));
+  s.set("uValueSource", static_cast<int>(map == ColorMap::Displacement ? kDisplacement
+                                         : map == ColorMap::Difference ? kScalar
+                                                                       : kNoValue));
   if (map == ColorMap::None) {
     s.set("uColorSource", static_cast<int>(gpu->skinTexture.valid() ? kTexture : kFlat));
     return;
   }
   s.set("uColorSource", static_cast<int>(kRamp));
-  const ColorScale scale = map == ColorMap::Displacement ? displacementScale(o.displacementMaxMm) : differenceScale(o.differenceRangeMm);
+  const ColorScale scale =
+      map == ColorMap::Displacement ? displacementScale(o.displacementMaxMm) : differenceScale(o.differenceRangeMm);
   s.set("uRange", Eigen::Vector2f(float(scale.min), float(scale.max)));
   s.set("uNoValue", withAlpha(kNoValueColor, 1.0f));
   (map == ColorMap::Displacement ? gpu->displacementRamp : gpu->differenceRamp).bind(1);
@@ -192,7 +196,8 @@ const std::string& Renderer::description() const { return impl_->context.descrip
 
 void Renderer::setSkin(const SurfaceMesh& rest, const RgbImage& texture) {
   const bool textured = texture.width > 0 || texture.height > 0 || !texture.pixels.empty();
-  if (textured && !rest.hasUv()) throw RenderError("skin: a texture is given but the skin has no texture coordinates (uv)");
+  if (textured && !rest.hasUv())
+    throw RenderError("skin: a texture is given but the skin has no texture coordinates (uv)");
   GlContext::Binding bound(impl_->context);
   GpuState& g = *impl_->gpu;
   GpuMesh mesh(rest, "skin");

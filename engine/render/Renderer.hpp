@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "mesh/SurfaceMesh.hpp"
 #include "image/RgbImage.hpp"
+#include "mesh/SurfaceMesh.hpp"
 #include "render/Camera.hpp"
 #include "render/CaseBones.hpp"
 #include "render/RenderOptions.hpp"

@@ -23,12 +23,10 @@ struct Canvas {
   }
   void text(int x, int y, const std::string& s, int scale, const std::array<unsigned char, 3>& c) {
     for (const auto& r : glyphRects(s))
-      rect(x + scale * static_cast<int>(r[0]), y + scale * static_cast<int>(r[1]), x + scale * static_cast<int>(r[2]) - 1,
-           y + scale * static_cast<int>(r[3]) - 1, c);
+      rect(x + scale * static_cast<int>(r[0]), y + scale * static_cast<int>(r[1]),
+           x + scale * static_cast<int>(r[2]) - 1, y + scale * static_cast<int>(r[3]) - 1, c);
   }
-  static int textWidth(const std::string& s, int scale) {
-    return scale * glyphWidth(s);
-  }
+  static int textWidth(const std::string& s, int scale) { return scale * glyphWidth(s); }
   void textVertical(int x, int y, const std::string& s, int scale, const std::array<unsigned char, 3>& c) {
     // Bottom to top: render into a scratch image, then rotate by 90 degrees.
     const int w = textWidth(s, scale) + 2, h = 12 * scale;
@@ -49,7 +47,8 @@ std::vector<double> ticks(double lo, double hi) {
   const double raw = span / 5, mag = std::pow(10.0, std::floor(std::log10(raw)));
   const double step = raw / mag < 1.5 ? mag : raw / mag < 3.5 ? 2 * mag : raw / mag < 7.5 ? 5 * mag : 10 * mag;
   std::vector<double> t;
-  for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * span; v += step) t.push_back(std::abs(v) < 1e-12 * span ? 0 : v);
+  for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * span; v += step)
+    t.push_back(std::abs(v) < 1e-12 * span ? 0 : v);
   return t;
 }
 
@@ -77,14 +76,21 @@ RgbImage scatterPlot(const ScatterPlotSpec& spec) {
   const double padY = std::max(0.08 * (y1 - y0), 1e-3 * std::max(1.0, std::abs(y0)));
   x0 -= padX, x1 += padX, y0 -= padY, y1 += padY;
 
-  RgbImage img{spec.width, spec.height, std::vector<unsigned char>(3 * static_cast<size_t>(spec.width) * spec.height, 255)};
+  RgbImage img{spec.width, spec.height,
+               std::vector<unsigned char>(3 * static_cast<size_t>(spec.width) * spec.height, 255)};
   Canvas c{img};
   const std::array<unsigned char, 3> black{0, 0, 0}, grey{215, 215, 215};
   const int legendRows = 1 + static_cast<int>(spec.series.size()) / 3;
   const int left = 120, right = spec.width - 20, top = 50, bottom = spec.height - 70 - 20 * legendRows;
-  const auto px = [&](double x) { return left + static_cast<int>(std::lround((tx(x) - x0) / (x1 - x0) * (right - left))); };
-  const auto pxT = [&](double t) { return left + static_cast<int>(std::lround((t - x0) / (x1 - x0) * (right - left))); };
-  const auto py = [&](double y) { return bottom - static_cast<int>(std::lround((y - y0) / (y1 - y0) * (bottom - top))); };
+  const auto px = [&](double x) {
+    return left + static_cast<int>(std::lround((tx(x) - x0) / (x1 - x0) * (right - left)));
+  };
+  const auto pxT = [&](double t) {
+    return left + static_cast<int>(std::lround((t - x0) / (x1 - x0) * (right - left)));
+  };
+  const auto py = [&](double y) {
+    return bottom - static_cast<int>(std::lround((y - y0) / (y1 - y0) * (bottom - top)));
+  };
 
   // Grid and ticks.
   std::vector<double> xt;

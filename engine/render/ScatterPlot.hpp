@@ -23,7 +23,7 @@ struct PlotSeries {
 
 struct ScatterPlotSpec {
   std::string title, xLabel, yLabel;
-  bool logX = false;         // x on a log10 scale (positive values only)
+  bool logX = false;  // x on a log10 scale (positive values only)
   std::vector<PlotSeries> series;
   std::vector<PlotPoint> points;
   int width = 900, height = 600;

@@ -57,7 +57,11 @@ void Shader::set(const char* u, float v) const { glUniform1f(location(u), v); }
 void Shader::set(const char* u, const Eigen::Vector2f& v) const { glUniform2fv(location(u), 1, v.data()); }
 void Shader::set(const char* u, const Eigen::Vector4f& v) const { glUniform4fv(location(u), 1, v.data()); }
 // Eigen stores column-major, as GL expects: no transpose.
-void Shader::set(const char* u, const Eigen::Matrix4f& m) const { glUniformMatrix4fv(location(u), 1, GL_FALSE, m.data()); }
-void Shader::set(const char* u, const Eigen::Matrix3f& m) const { glUniformMatrix3fv(location(u), 1, GL_FALSE, m.data()); }
+void Shader::set(const char* u, const Eigen::Matrix4f& m) const {
+  glUniformMatrix4fv(location(u), 1, GL_FALSE, m.data());
+}
+void Shader::set(const char* u, const Eigen::Matrix3f& m) const {
+  glUniformMatrix3fv(location(u), 1, GL_FALSE, m.data());
+}
 
 }  // namespace orthosim::render

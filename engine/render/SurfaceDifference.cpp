@@ -19,7 +19,8 @@ Eigen::VectorXd signedDifference(const SurfaceMesh& surface, const SurfaceMesh& 
   if (surface.numVertices() != reference.numVertices() || surface.triangles.cols() != reference.triangles.cols() ||
       surface.triangles != reference.triangles)
     throw RenderError("signed difference: the surfaces differ in topology (" + std::to_string(surface.numVertices()) +
-                      " and " + std::to_string(reference.numVertices()) + " vertices); compare deformations of one skin");
+                      " and " + std::to_string(reference.numVertices()) +
+                      " vertices); compare deformations of one skin");
   const Eigen::Matrix3Xd n = reference.vertexNormals();
   return (surface.vertices - reference.vertices).cwiseProduct(n).colwise().sum().transpose();
 }

@@ -14,11 +14,11 @@ namespace orthosim {
 constexpr double kDefaultBoneContactDistance = 2.0;  // mm
 
 struct BoneContact {
-  std::vector<int> nodes;          // selected nodes, in candidate order
-  std::vector<double> distances;   // mm, distances[k] belongs to nodes[k]
-  int candidates = 0;              // how many candidates were tested
-  double maxDistance = 0.0;        // mm, the selection bound (inclusive)
-  double nearestCandidate = 0.0;   // mm, over all candidates: how far off an empty result was
+  std::vector<int> nodes;         // selected nodes, in candidate order
+  std::vector<double> distances;  // mm, distances[k] belongs to nodes[k]
+  int candidates = 0;             // how many candidates were tested
+  double maxDistance = 0.0;       // mm, the selection bound (inclusive)
+  double nearestCandidate = 0.0;  // mm, over all candidates: how far off an empty result was
 
   int count() const { return static_cast<int>(nodes.size()); }
   bool empty() const { return nodes.empty(); }

@@ -37,11 +37,13 @@ bool samePlane(const CutPlane& a, const CutPlane& b) {
 
 class FragmentLocator {
  public:
-  FragmentLocator(FragmentCoupling& out, const std::vector<BoneGroup>& groups, const std::vector<FragmentRegion>& regions) {
+  FragmentLocator(FragmentCoupling& out, const std::vector<BoneGroup>& groups,
+                  const std::vector<FragmentRegion>& regions) {
     for (const BoneGroup& g : groups) add(out, g.bone, g.bone);
     for (const FragmentRegion& r : regions) {
       const int parent = out.fragmentIndex(r.parent);
-      if (parent < 0) throw std::invalid_argument("cut '" + r.name + "': '" + r.parent + "' is no bone or earlier fragment");
+      if (parent < 0)
+        throw std::invalid_argument("cut '" + r.name + "': '" + r.parent + "' is no bone or earlier fragment");
       ResolvedRegion rr{add(out, r.name, out.fragmentBone[parent]), out.fragmentBone[parent], r.bounds, {}};
       for (const ResolvedRegion& p : regions_)
         if (p.fragment == parent) rr.bounds.insert(rr.bounds.end(), p.bounds.begin(), p.bounds.end());
@@ -86,8 +88,8 @@ class FragmentLocator {
     }
     // 2^k side patterns: a node among more cuts than any osteotomy makes is a malformed plan.
     if (near.size() > kMaxPlanesNear)
-      throw std::invalid_argument("bone '" + bone + "': a bonded node lies within " + std::to_string(width) + " mm of " +
-                                  std::to_string(near.size()) + " cut planes; blending takes at most " +
+      throw std::invalid_argument("bone '" + bone + "': a bonded node lies within " + std::to_string(width) +
+                                  " mm of " + std::to_string(near.size()) + " cut planes; blending takes at most " +
                                   std::to_string(kMaxPlanesNear) + " (check the cuts for repeated or stray planes)");
     std::vector<bool> positive(planes.size());
     for (size_t i = 0; i < planes.size(); ++i) positive[i] = d[i] >= 0;
@@ -101,8 +103,10 @@ class FragmentLocator {
       if (w == 0.0) continue;
       const int f = fragmentOnSides(bone, boneFragment, positive);
       auto it = std::find_if(out.begin(), out.end(), [f](const auto& p) { return p.first == f; });
-      if (it == out.end()) out.push_back({f, w});
-      else it->second += w;
+      if (it == out.end())
+        out.push_back({f, w});
+      else
+        it->second += w;
     }
     std::sort(out.begin() + 1, out.end());
     return out;
@@ -153,7 +157,8 @@ std::vector<int> locateOnBone(const std::vector<BoneGroup>& groups, const std::v
 
 FragmentCoupling splitBoneGroups(const Eigen::Matrix3Xd& rest, const std::vector<BoneGroup>& groups,
                                  const std::vector<FragmentRegion>& regions, double width) {
-  if (!(width > 0) || !std::isfinite(width)) throw std::invalid_argument("cut blend width must be a positive number of mm");
+  if (!(width > 0) || !std::isfinite(width))
+    throw std::invalid_argument("cut blend width must be a positive number of mm");
   FragmentCoupling out;
   const FragmentLocator locate(out, groups, regions);
   std::set<int> taken;

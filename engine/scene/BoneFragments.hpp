@@ -18,10 +18,10 @@ struct BoneGroup {
 };
 
 struct FragmentCoupling {
-  std::vector<std::string> fragments;      // each bone (its uncut rest), then each region, in order
-  std::vector<std::vector<int>> nodes;     // per fragment: nodes bonded to it alone (weight 1)
-  std::vector<BlendedNode> blended;        // weights index `fragments`
-  std::vector<std::string> fragmentBone;   // per fragment: the bone it was cut from
+  std::vector<std::string> fragments;     // each bone (its uncut rest), then each region, in order
+  std::vector<std::vector<int>> nodes;    // per fragment: nodes bonded to it alone (weight 1)
+  std::vector<BlendedNode> blended;       // weights index `fragments`
+  std::vector<std::string> fragmentBone;  // per fragment: the bone it was cut from
 
   int fragmentIndex(const std::string& name) const;
 };

@@ -68,7 +68,8 @@ void readTissue(JsonReader r, const std::string& base, CaseSpec& c) {
     }
   }
   if (c.node.empty() && c.skin.empty()) r.fail("needs a skin surface ('skin') or tetrahedra ('node' and 'ele')");
-  if (!c.node.empty() && !c.cavities.empty()) r.fail("cavities only apply to a skin envelope, not to given tetrahedra", "cavities");
+  if (!c.node.empty() && !c.cavities.empty())
+    r.fail("cavities only apply to a skin envelope, not to given tetrahedra", "cavities");
   if (r.has("material")) readMaterial(r.child("material"), c.youngsModulus, c.poissonRatio);
   r.rejectUnknown();
 }
@@ -187,7 +188,8 @@ CaseSpec loadCaseFile(const std::string& path) {
   std::set<std::string> names;
   root.forEach("bones", [&](JsonReader b) {
     c.bones.push_back(readBone(std::move(b), base, c.isVolume()));
-    if (!names.insert(c.bones.back().name).second) root.fail("bone name '" + c.bones.back().name + "' is used twice", "bones");
+    if (!names.insert(c.bones.back().name).second)
+      root.fail("bone name '" + c.bones.back().name + "' is used twice", "bones");
   });
   if (c.bones.empty()) root.fail("must list at least one bone", "bones");
   if (root.has("fixed")) {

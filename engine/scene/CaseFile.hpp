@@ -19,8 +19,8 @@ const char* resolutionName(Resolution r);
 
 struct CaseBone {
   std::string name;
-  std::string surface;        // path; closed for surface cases, may be open (cropped) for volume cases
-  bool fixed = false;         // held in place (the skull): the plan cannot move what is left of it
+  std::string surface;  // path; closed for surface cases, may be open (cropped) for volume cases
+  bool fixed = false;   // held in place (the skull): the plan cannot move what is left of it
   // Volume cases only: the tissue nodes bonded to the bone, from a node set and/or derived: the
   // candidate nodes (a node set, default every boundary node) within bondDistance of the surface,
   // leaving out nodes another bone's node set claims. Derived unless a node set is given, or both
@@ -32,9 +32,9 @@ struct CaseBone {
 };
 
 struct CaseRefine {
-  std::string landmark;       // centre: a landmark, or `center` when empty
+  std::string landmark;  // centre: a landmark, or `center` when empty
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
-  double radius = 20.0;       // mm
+  double radius = 20.0;  // mm
   double density = 3.0;
 };
 
@@ -62,14 +62,14 @@ struct CaseContact {
 };
 
 struct CaseSpec {
-  std::string file;       // the case file, absolute
+  std::string file;  // the case file, absolute
   std::string name;
   AnatomicalFrame frame;
   // Tissue: a closed skin envelope minus bones and cavities (surface case), or tetrahedra.
-  std::string skin;       // surface case: the envelope; volume case: the skin shown and embedded (optional)
+  std::string skin;  // surface case: the envelope; volume case: the skin shown and embedded (optional)
   std::vector<std::string> cavities;
-  std::string texture;    // image for the skin's uv (optional)
-  std::string node, ele;  // volume case
+  std::string texture;         // image for the skin's uv (optional)
+  std::string node, ele;       // volume case
   double youngsModulus = 0.1;  // MPa
   double poissonRatio = 0.47;
   std::vector<CaseBone> bones;

@@ -21,7 +21,8 @@ SurfaceMesh trianglesOf(const SurfaceMesh& bone, const std::vector<int>& fragmen
   for (int t = 0; t < bone.numTriangles(); ++t)
     if (fragmentOf[t] == f) keep.push_back(t);
   out.triangles.resize(3, static_cast<Eigen::Index>(keep.size()));
-  for (size_t k = 0; k < keep.size(); ++k) out.triangles.col(static_cast<Eigen::Index>(k)) = bone.triangles.col(keep[k]);
+  for (size_t k = 0; k < keep.size(); ++k)
+    out.triangles.col(static_cast<Eigen::Index>(k)) = bone.triangles.col(keep[k]);
   return out;
 }
 
@@ -46,7 +47,8 @@ std::vector<ContactSpec> caseContacts(const CaseSpec& spec, const CaseTissue& ti
   for (int n = 0; n < scene.mesh.numNodes(); ++n)
     if (boundary[n] && !held[n] && !skin[n]) candidates.push_back(n);
   Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(candidates.size()));
-  for (size_t k = 0; k < candidates.size(); ++k) points.col(static_cast<Eigen::Index>(k)) = scene.mesh.rest.col(candidates[k]);
+  for (size_t k = 0; k < candidates.size(); ++k)
+    points.col(static_cast<Eigen::Index>(k)) = scene.mesh.rest.col(candidates[k]);
   if (candidates.empty()) return out;
 
   for (size_t c = 0; c < spec.contacts.size(); ++c)
@@ -54,11 +56,13 @@ std::vector<ContactSpec> caseContacts(const CaseSpec& spec, const CaseTissue& ti
       size_t b = 0;
       while (spec.bones[b].name != boneName) ++b;
       SurfaceMesh bone = importSurface(spec.bones[b].surface);
-      checkSurface(bone, spec.file + ": bones[" + std::to_string(b) + "].surface", SurfaceRequirement::OpenAllowed);  // outward
+      checkSurface(bone, spec.file + ": bones[" + std::to_string(b) + "].surface",
+                   SurfaceRequirement::OpenAllowed);  // outward
       Eigen::Matrix3Xd centroids(3, bone.numTriangles());
       for (int t = 0; t < bone.numTriangles(); ++t)
         centroids.col(t) = (bone.vertices.col(bone.triangles(0, t)) + bone.vertices.col(bone.triangles(1, t)) +
-                            bone.vertices.col(bone.triangles(2, t))) / 3.0;
+                            bone.vertices.col(bone.triangles(2, t))) /
+                           3.0;
       const std::vector<int> fragmentOf = locateOnBone(groups, spec.regions, boneName, centroids);
       std::set<int> fragments(fragmentOf.begin(), fragmentOf.end());
       for (int f : fragments) {

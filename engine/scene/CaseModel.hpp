@@ -17,7 +17,7 @@ struct CaseModel {
   CaseSpec spec;
   Resolution resolution = Resolution::Coarse;
   CaseTissue tissue;
-  FragmentCoupling coupling;   // fragment names and groups, as in scene.fragments
+  FragmentCoupling coupling;  // fragment names and groups, as in scene.fragments
   Scene scene;
   PointEmbedding skinEmbedding;  // tissue.skin's vertices in the tetrahedra (empty without a skin)
   std::vector<std::string> warnings;

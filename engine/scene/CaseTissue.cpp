@@ -32,7 +32,10 @@ struct Hash {
   void bytes(const char* p, size_t n) {
     for (size_t i = 0; i < n; ++i) h = (h ^ static_cast<unsigned char>(p[i])) * 1099511628211ull;
   }
-  void text(const std::string& s) { bytes(s.data(), s.size()); bytes("\0", 1); }
+  void text(const std::string& s) {
+    bytes(s.data(), s.size());
+    bytes("\0", 1);
+  }
   void number(double v) { text(std::to_string(v)); }
   void file(const std::string& path, const std::string& field) {
     std::ifstream in(path, std::ios::binary);
@@ -100,15 +103,17 @@ CaseTissue volumeTissue(const CaseSpec& spec, const CaseTissueOptions& o) {
     if (bone.nodes.empty()) continue;
     t.boneNodes[b] = readNodeSet(bone.nodes, n, "bones[" + std::to_string(b) + "].nodes");
     for (int i : t.boneNodes[b]) claimedBy[i] = static_cast<int>(b);
-    say(t, o, bone.name + ": " + std::to_string(t.boneNodes[b].size()) + " bonded nodes from " +
-                  fs::path(bone.nodes).filename().string());
+    say(t, o,
+        bone.name + ": " + std::to_string(t.boneNodes[b].size()) + " bonded nodes from " +
+            fs::path(bone.nodes).filename().string());
   }
   std::vector<int> boundary;
   for (size_t b = 0; b < spec.bones.size(); ++b) {
     const CaseBone& bone = spec.bones[b];
     if (!bone.derive) continue;
     const std::string field = "bones[" + std::to_string(b) + "]";
-    const SurfaceMesh surface = readSurface(spec, bone.surface, field + ".surface", SurfaceRequirement::OpenAllowed, t, o);
+    const SurfaceMesh surface =
+        readSurface(spec, bone.surface, field + ".surface", SurfaceRequirement::OpenAllowed, t, o);
     std::vector<int> candidates;
     if (!bone.candidates.empty()) {
       candidates = readNodeSet(bone.candidates, n, field + ".candidates");
@@ -120,8 +125,9 @@ CaseTissue volumeTissue(const CaseSpec& spec, const CaseTissueOptions& o) {
     for (int i : candidates)
       if (claimedBy[i] < 0 || claimedBy[i] == static_cast<int>(b)) open.push_back(i);
     const BoneContact c = nodesNearBone(t.mesh.rest, open, surface, bone.bondDistance);
-    say(t, o, c.summary(bone.name) + " (derived from the surface; " + std::to_string(candidates.size() - open.size()) +
-                  " candidates left to other bones' node sets)");
+    say(t, o,
+        c.summary(bone.name) + " (derived from the surface; " + std::to_string(candidates.size() - open.size()) +
+            " candidates left to other bones' node sets)");
     if (c.empty()) throw SceneError(spec.file + ": " + field + ": " + c.summary(bone.name));
     std::vector<int>& nodes = t.boneNodes[b];
     for (int i : c.nodes)

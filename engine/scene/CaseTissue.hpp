@@ -22,8 +22,8 @@ struct CaseTissue {
   int skinTriangles = 0;                    // simplified skin triangles (surface cases)
   SurfaceMesh skin;                         // full-resolution skin, uv when the input has it (may be empty)
   MeshQuality quality;
-  std::vector<std::string> report;          // one line per step: counts, quality, derived groups, cache
-  double seconds = 0;                       // to build or to read from the cache
+  std::vector<std::string> report;  // one line per step: counts, quality, derived groups, cache
+  double seconds = 0;               // to build or to read from the cache
   bool fromCache = false;
 };
 

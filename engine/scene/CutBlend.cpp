@@ -31,8 +31,7 @@ CutCoupling splitBondedNodes(const Eigen::Matrix3Xd& rest, const std::vector<int
   if (!cut.normal.allFinite() || std::abs(cut.normal.norm() - 1.0) > 1e-9)
     throw std::invalid_argument("cut plane: normal must have unit length, has length " +
                                 std::to_string(cut.normal.norm()));
-  if (fragmentA == fragmentB)
-    throw std::invalid_argument("cut: both sides are fragment " + std::to_string(fragmentA));
+  if (fragmentA == fragmentB) throw std::invalid_argument("cut: both sides are fragment " + std::to_string(fragmentA));
 
   CutCoupling out;
   for (int node : bonded) {

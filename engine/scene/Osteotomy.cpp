@@ -17,7 +17,8 @@ struct LandmarkTable {
   Eigen::Vector3d operator()(const std::string& name) const {
     const auto it = landmarks.find(name);
     if (it == landmarks.end())
-      throw std::invalid_argument("osteotomy '" + kind + "' needs the landmark '" + name + "', which the case does not give");
+      throw std::invalid_argument("osteotomy '" + kind + "' needs the landmark '" + name +
+                                  "', which the case does not give");
     return it->second;
   }
 };
@@ -30,7 +31,8 @@ CutPlane plane(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
 // bonded to the skull further out (zygoma, cheeks over the mandible) never joins the maxilla.
 // Lateral limits of a maxillary fragment, `outside` mm lateral of the upper molars.
 std::vector<CutPlane> maxillaSides(const LandmarkTable& lm, const AnatomicalFrame& f, double outside) {
-  return {plane(lm("upper_molar_left") - outside * f.right, f.right), plane(lm("upper_molar_right") + outside * f.right, -f.right)};
+  return {plane(lm("upper_molar_left") - outside * f.right, f.right),
+          plane(lm("upper_molar_right") + outside * f.right, -f.right)};
 }
 
 std::vector<CutPlane> leFortOneBounds(const OsteotomySpec& cut, const LandmarkTable& lm, const AnatomicalFrame& f) {
@@ -42,7 +44,8 @@ std::vector<CutPlane> leFortOneBounds(const OsteotomySpec& cut, const LandmarkTa
   return b;
 }
 
-std::vector<FragmentRegion> segmentedMaxilla(const OsteotomySpec& cut, const LandmarkTable& lm, const AnatomicalFrame& f) {
+std::vector<FragmentRegion> segmentedMaxilla(const OsteotomySpec& cut, const LandmarkTable& lm,
+                                             const AnatomicalFrame& f) {
   const std::vector<CutPlane> lf1 = leFortOneBounds(cut, lm, f);
   // Interdental cut between canine and first premolar, across the arch: its normal runs along the
   // arch toward the canine, in the occlusal (horizontal) plane.
@@ -64,10 +67,12 @@ std::vector<FragmentRegion> segmentedMaxilla(const OsteotomySpec& cut, const Lan
           region("maxilla_right", {plane(right.point, -right.normal), plane(mid, f.right)})};
 }
 
-FragmentRegion ramus(const OsteotomySpec& cut, const LandmarkTable& lm, const AnatomicalFrame& f, const std::string& side) {
+FragmentRegion ramus(const OsteotomySpec& cut, const LandmarkTable& lm, const AnatomicalFrame& f,
+                     const std::string& side) {
   const Eigen::Vector3d mid = 0.5 * (lm("gonion_left") + lm("gonion_right"));
   const Eigen::Vector3d lateral = side == "left" ? Eigen::Vector3d(-f.right) : f.right;
-  return {"ramus_" + side, cut.bone,
+  return {"ramus_" + side,
+          cut.bone,
           {plane(lm("lower_molar_" + side) - offsetOr(cut, 12.0) * f.anterior, -f.anterior), plane(mid, lateral)}};
 }
 
@@ -80,7 +85,8 @@ bool FragmentRegion::contains(const Eigen::Vector3d& x) const {
 }
 
 const std::vector<std::string>& osteotomyTemplates() {
-  static const std::vector<std::string> names{"le_fort_1", "le_fort_2", "segmented_maxilla", "bsso", "usso", "genioplasty"};
+  static const std::vector<std::string> names{"le_fort_1", "le_fort_2", "segmented_maxilla",
+                                              "bsso",      "usso",      "genioplasty"};
   return names;
 }
 
@@ -103,7 +109,8 @@ std::vector<FragmentRegion> osteotomyRegions(const OsteotomySpec& cut, const Lan
   } else if (cut.kind == "le_fort_2") {
     const Eigen::Vector3d apex = lm("nasion") - offsetOr(cut, 8.0) * f.superior;
     const double slope = std::tan(40.0 * kDeg);
-    out.push_back({"maxilla", cut.bone,
+    out.push_back({"maxilla",
+                   cut.bone,
                    {plane(apex, -f.superior + slope * f.right), plane(apex, -f.superior - slope * f.right),
                     plane(lm("PNS") - 5.0 * f.anterior, f.anterior)}});
     // Le Fort II separates the maxilla from the zygomas: 12 mm outside the molars.
@@ -120,8 +127,10 @@ std::vector<FragmentRegion> osteotomyRegions(const OsteotomySpec& cut, const Lan
     const Eigen::Vector3d level =
         0.5 * (lm("mental_foramen_left") + lm("mental_foramen_right")) - offsetOr(cut, 5.0) * f.superior;
     const Eigen::Vector3d canines = 0.5 * (lm("lower_canine_left") + lm("lower_canine_right"));
-    out.push_back({"chin", cut.bone,
-                   {plane(level, -f.superior + std::tan(10.0 * kDeg) * f.anterior), plane(canines - 15.0 * f.anterior, f.anterior)}});
+    out.push_back({"chin",
+                   cut.bone,
+                   {plane(level, -f.superior + std::tan(10.0 * kDeg) * f.anterior),
+                    plane(canines - 15.0 * f.anterior, f.anterior)}});
   } else {
     std::string known;
     for (const auto& n : osteotomyTemplates()) known += (known.empty() ? "" : ", ") + n;

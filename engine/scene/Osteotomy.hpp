@@ -33,12 +33,12 @@ struct FragmentRegion {
 };
 
 struct OsteotomySpec {
-  std::string kind;     // a template name (osteotomyTemplates()) or "planes"
-  std::string bone;     // the bone (or earlier fragment) it cuts
-  std::string side;     // "left" or "right": unilateral sagittal split only
-  std::string fragment; // "planes": the name of the fragment cut off
+  std::string kind;              // a template name (osteotomyTemplates()) or "planes"
+  std::string bone;              // the bone (or earlier fragment) it cuts
+  std::string side;              // "left" or "right": unilateral sagittal split only
+  std::string fragment;          // "planes": the name of the fragment cut off
   std::vector<CutPlane> planes;  // "planes": its bounds
-  double offset = -1;   // mm, the template's level (see osteotomyRegions); < 0: the default
+  double offset = -1;            // mm, the template's level (see osteotomyRegions); < 0: the default
 };
 
 // Template names: le_fort_1, le_fort_2, segmented_maxilla, bsso, usso, genioplasty.

@@ -17,7 +17,8 @@ std::map<std::string, FragmentMotion> readCasePlan(JsonReader plan, const CaseSp
       plan.fail("unknown fragment '" + name + "' (fragments: " + known + ")", name);
     }
     for (const CaseBone& b : spec.bones)
-      if (b.name == name && b.fixed) plan.fail("'" + name + "' is a fixed bone; cut a fragment from it to move it", name);
+      if (b.name == name && b.fixed)
+        plan.fail("'" + name + "' is a fixed bone; cut a fragment from it to move it", name);
     out[name] = readFragmentMotion(JsonReader(plan.file(), motion, plan.sub(name)));
   }
   return out;

@@ -60,26 +60,26 @@ constexpr double kDefaultContactFactor = 10.0;
 enum class HessianMode { Auto, Projected, Exact };
 
 struct SolverSettings {
-  int substeps = 0;               // 0: adaptive; N > 0: N equal substeps (refined when one fails)
-  int maxIterations = 30;         // Newton iterations per substep before it counts as failed
-  int maxRefinements = 12;        // halvings of a failing substep before the solve gives up
+  int substeps = 0;         // 0: adaptive; N > 0: N equal substeps (refined when one fails)
+  int maxIterations = 30;   // Newton iterations per substep before it counts as failed
+  int maxRefinements = 12;  // halvings of a failing substep before the solve gives up
   // Newton and chord iterations of the whole solve, failed substeps included, before it gives up:
   // a plan that cannot be followed is refused in bounded time rather than halved for minutes.
   int maxTotalIterations = 300;
-  double forceTolerance = -1.0;   // N, on the reduced residual (max norm); < 0: automatic
-  double stepTolerance = -1.0;    // mm, on the Newton step (max norm); < 0: automatic
+  double forceTolerance = -1.0;  // N, on the reduced residual (max norm); < 0: automatic
+  double stepTolerance = -1.0;   // mm, on the Newton step (max norm); < 0: automatic
   HessianMode hessian = HessianMode::Auto;
 };
 
 struct Scene {
   TetMesh mesh;
-  int indexBase = 0;  // of the .node file, reused when writing results
+  int indexBase = 0;           // of the .node file, reused when writing results
   double youngsModulus = 0.1;  // MPa (100 kPa)
   double poissonRatio = 0.47;
   std::vector<FragmentSpec> fragments;
   std::vector<BlendedNode> blended;
   std::vector<FixedSpec> fixed;
-  std::vector<ContactSpec> contacts;  // none: no distance query is ever made
+  std::vector<ContactSpec> contacts;           // none: no distance query is ever made
   std::map<std::string, FragmentMotion> plan;  // fragment name -> motion; absent: keeps its pose
   SolverSettings solver;
 

@@ -74,10 +74,14 @@ void readSolverSettings(JsonReader r, SolverSettings& s) {
   }
   if (r.has("hessian")) {
     const std::string h = r.string("hessian");
-    if (h == "auto") s.hessian = HessianMode::Auto;
-    else if (h == "projected") s.hessian = HessianMode::Projected;
-    else if (h == "exact") s.hessian = HessianMode::Exact;
-    else r.fail("must be \"auto\", \"projected\" or \"exact\"", "hessian");
+    if (h == "auto")
+      s.hessian = HessianMode::Auto;
+    else if (h == "projected")
+      s.hessian = HessianMode::Projected;
+    else if (h == "exact")
+      s.hessian = HessianMode::Exact;
+    else
+      r.fail("must be \"auto\", \"projected\" or \"exact\"", "hessian");
   }
   r.rejectUnknown();
 }

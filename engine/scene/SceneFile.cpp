@@ -18,7 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-
 // Blend weights: one line per node, "node name weight [name weight ...]".
 std::vector<BlendedNode> readBlendFile(const std::string& path, const Scene& scene, const std::string& field) {
   std::ifstream in(path);
@@ -36,7 +35,8 @@ std::vector<BlendedNode> readBlendFile(const std::string& path, const Scene& sce
       throw SceneError(where() + "expected 'node fragment weight ...'");
     }
     if (b.node < 0 || b.node >= scene.mesh.numNodes())
-      throw SceneError(where() + "node index " + std::to_string(b.node) + " is outside 0.." + std::to_string(scene.mesh.numNodes() - 1));
+      throw SceneError(where() + "node index " + std::to_string(b.node) + " is outside 0.." +
+                       std::to_string(scene.mesh.numNodes() - 1));
     if (!seen.insert(b.node).second) throw SceneError(where() + "node " + std::to_string(b.node) + " is listed twice");
     std::string name;
     double w;

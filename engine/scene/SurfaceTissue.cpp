@@ -111,7 +111,8 @@ SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
   simplify.interfaceDensity = in.interfaceDensity;
   SimplifyReport simplified;
   const LabelledSurface simple = simplifySurface(full, simplify, &simplified);
-  how << "simplified to " << simplified.skinTriangles << " skin + " << simplified.solidTriangles << " interface triangles";
+  how << "simplified to " << simplified.skinTriangles << " skin + " << simplified.solidTriangles
+      << " interface triangles";
   double boundarySeconds = since(t0), tetgenSeconds = 0;
 
   // Needle and cap removal, boldest first. A bolder clean-up can fold the surface onto itself
@@ -122,7 +123,9 @@ SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
   tetgen.maxRadiusEdgeRatio = in.maxRadiusEdgeRatio;
   tetgen.minDihedralDeg = in.minDihedralDeg;
   tetgen.preserveSurface = in.preserveSurface;
-  struct Cleanup { double collapseMm, needleRatio, capDeg; };
+  struct Cleanup {
+    double collapseMm, needleRatio, capDeg;
+  };
   // The last resort is the simplified surface as it is (collapse length 0: no clean-up).
   const Cleanup cleanups[] = {{2.0 * in.maxCollapseMm, 3.0, 140.0}, {in.maxCollapseMm, 6.0, 165.0}, {0, 0, 0}};
   LabelledSurface boundary;
@@ -131,7 +134,8 @@ SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
   for (const Cleanup& c : cleanups) {
     t0 = Clock::now();
     CleanupReport cleaned;
-    LabelledSurface candidate = c.collapseMm > 0 ? removeSlivers(simple, c.collapseMm, c.needleRatio, c.capDeg, &cleaned) : simple;
+    LabelledSurface candidate =
+        c.collapseMm > 0 ? removeSlivers(simple, c.collapseMm, c.needleRatio, c.capDeg, &cleaned) : simple;
     boundarySeconds += since(t0);
     t0 = Clock::now();
     try {

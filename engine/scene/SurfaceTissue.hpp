@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "mesh/LabelledSurface.hpp"
 #include "mesh/SurfaceMesh.hpp"
 #include "mesh/SurfaceSimplify.hpp"
 #include "mesh/TetMesh.hpp"
-#include "mesh/LabelledSurface.hpp"
 
 namespace orthosim {
 
@@ -17,13 +17,13 @@ namespace orthosim {
 constexpr const char* kSurfaceTissueVersion = "surface-tissue-3";
 
 struct SurfaceTissueInput {
-  SurfaceMesh envelope;               // closed skin envelope (uv optional)
-  std::vector<SurfaceMesh> solids;    // closed bones and cavities, subtracted
-  std::vector<std::string> names;     // per solid, for messages
+  SurfaceMesh envelope;             // closed skin envelope (uv optional)
+  std::vector<SurfaceMesh> solids;  // closed bones and cavities, subtracted
+  std::vector<std::string> names;   // per solid, for messages
   int skinTriangles = 3000;
   std::vector<RefineRegion> refine;
-  double interfaceDensity = 0.5;      // bone and cavity surfaces: triangles per area relative to the skin
-  double maxRadiusEdgeRatio = 1.5;    // TetGen -q
+  double interfaceDensity = 0.5;    // bone and cavity surfaces: triangles per area relative to the skin
+  double maxRadiusEdgeRatio = 1.5;  // TetGen -q
   double minDihedralDeg = 10;
   // false: TetGen may split boundary triangles (Steiner points on the surface, labelled by the
   // triangle they lie on). true (-Y): every boundary node is a vertex of the simplified surface.

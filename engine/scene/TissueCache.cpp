@@ -19,7 +19,8 @@ class Writer {
   void matrix(const M& m) {
     i64(m.rows());
     i64(m.cols());
-    out_.write(reinterpret_cast<const char*>(m.data()), static_cast<std::streamsize>(sizeof(typename M::Scalar) * m.size()));
+    out_.write(reinterpret_cast<const char*>(m.data()),
+               static_cast<std::streamsize>(sizeof(typename M::Scalar) * m.size()));
   }
   void ints(const std::vector<int>& v) {
     i64(static_cast<std::int64_t>(v.size()));
@@ -38,12 +39,21 @@ class Writer {
 class Reader {
  public:
   Reader(std::ifstream& in, std::int64_t size) : in_(in), left_(size) {}
-  std::int64_t i64() { std::int64_t v; raw(&v, sizeof v); return v; }
-  double f64() { double v; raw(&v, sizeof v); return v; }
+  std::int64_t i64() {
+    std::int64_t v;
+    raw(&v, sizeof v);
+    return v;
+  }
+  double f64() {
+    double v;
+    raw(&v, sizeof v);
+    return v;
+  }
   template <class M>
   void matrix(M& m, std::int64_t rows) {
     const std::int64_t r = i64(), c = i64();
-    if (r != rows || c < 0 || c * r * static_cast<std::int64_t>(sizeof(typename M::Scalar)) > left_) throw std::runtime_error("bad matrix");
+    if (r != rows || c < 0 || c * r * static_cast<std::int64_t>(sizeof(typename M::Scalar)) > left_)
+      throw std::runtime_error("bad matrix");
     m.resize(r, c);
     raw(m.data(), sizeof(typename M::Scalar) * m.size());
   }
@@ -140,7 +150,8 @@ std::optional<CaseTissue> readTissueCache(const std::string& path) {
     // Indices must be in range: a damaged file must not reach the solver.
     const int n = t.mesh.numNodes();
     if ((t.mesh.tets.size() && (t.mesh.tets.minCoeff() < 0 || t.mesh.tets.maxCoeff() >= n)) ||
-        (t.skin.triangles.size() && (t.skin.triangles.minCoeff() < 0 || t.skin.triangles.maxCoeff() >= t.skin.numVertices())))
+        (t.skin.triangles.size() &&
+         (t.skin.triangles.minCoeff() < 0 || t.skin.triangles.maxCoeff() >= t.skin.numVertices())))
       return std::nullopt;
     for (const auto& b : t.boneNodes)
       for (int i : b)

@@ -20,7 +20,8 @@ Coupling::Coupling(const Scene& scene) : rest_(scene.mesh.rest) {
   std::vector<std::vector<SkinTerm>> skin(n);
   auto checkNode = [&](int i, const std::string& where) {
     if (i < 0 || i >= n)
-      throw std::invalid_argument(where + ": node index " + std::to_string(i) + " is outside 0.." + std::to_string(n - 1));
+      throw std::invalid_argument(where + ": node index " + std::to_string(i) + " is outside 0.." +
+                                  std::to_string(n - 1));
   };
   auto claim = [&](int i, const std::string& who) {
     if (!owner[i].empty() && owner[i] != who)
@@ -41,17 +42,21 @@ Coupling::Coupling(const Scene& scene) : rest_(scene.mesh.rest) {
   }
   for (const auto& b : scene.blended) {
     checkNode(b.node, "blended");
-    if (!owner[b.node].empty()) throw std::invalid_argument(nodeName(b.node) + " is blended and also coupled to " + owner[b.node]);
+    if (!owner[b.node].empty())
+      throw std::invalid_argument(nodeName(b.node) + " is blended and also coupled to " + owner[b.node]);
     claim(b.node, "blended weights");
     double sum = 0.0;
     for (const auto& [f, w] : b.weights) {
-      if (f < 0 || f >= nf) throw std::invalid_argument("blended " + nodeName(b.node) + ": unknown fragment index " + std::to_string(f));
-      if (!std::isfinite(w) || w < 0.0) throw std::invalid_argument("blended " + nodeName(b.node) + ": weight must be finite and >= 0");
+      if (f < 0 || f >= nf)
+        throw std::invalid_argument("blended " + nodeName(b.node) + ": unknown fragment index " + std::to_string(f));
+      if (!std::isfinite(w) || w < 0.0)
+        throw std::invalid_argument("blended " + nodeName(b.node) + ": weight must be finite and >= 0");
       sum += w;
       if (w > 0.0) skin[b.node].push_back({f, w});
     }
     if (std::abs(sum - 1.0) > 1e-6)
-      throw std::invalid_argument("blended " + nodeName(b.node) + ": weights sum to " + std::to_string(sum) + ", not 1");
+      throw std::invalid_argument("blended " + nodeName(b.node) + ": weights sum to " + std::to_string(sum) +
+                                  ", not 1");
     role[b.node] = kSkinned;
   }
 
@@ -110,12 +115,14 @@ Coupling::Coupling(const Scene& scene) : rest_(scene.mesh.rest) {
       continue;
     }
     if (weightSum[f] == 0)
-      throw std::invalid_argument("free fragment '" + scene.fragments[f].name + "' has no tissue nodes: nothing holds it");
+      throw std::invalid_argument("free fragment '" + scene.fragments[f].name +
+                                  "' has no tissue nodes: nothing holds it");
     fragmentDof_[f] = numFreeNodeDofs_ + 6 * static_cast<int>(freeFragments_.size());
     freeFragments_.push_back(f);
   }
   if (!held)
-    throw std::invalid_argument("nothing holds the tissue: no fixed nodes and no tissue bonded to a prescribed fragment");
+    throw std::invalid_argument(
+        "nothing holds the tissue: no fixed nodes and no tissue bonded to a prescribed fragment");
 
   std::vector<double> inertia(nf, 0.0);  // sum w |X - o|^2
   for (int i = 0; i < n; ++i)
@@ -156,7 +163,8 @@ void Coupling::updateConstrainedNodes(SimState& s) const {
   for (int i = 0; i < numNodes(); ++i) {
     if (!isSkinned(i)) continue;
     Eigen::Vector3d p = Eigen::Vector3d::Zero();
-    for (const SkinTerm* t = skinBegin(i); t != skinEnd(i); ++t) p += t->weight * s.fragments[t->fragment].apply(rest_.col(i));
+    for (const SkinTerm* t = skinBegin(i); t != skinEnd(i); ++t)
+      p += t->weight * s.fragments[t->fragment].apply(rest_.col(i));
     s.x.col(i) = p;
   }
 }

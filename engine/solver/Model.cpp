@@ -13,7 +13,8 @@ Model::Model(Scene scene) : scene_(std::move(scene)) {
   for (const auto& [name, motion] : scene_.plan) {
     const auto f = scene_.fragmentIndex(name);
     if (!f) throw std::invalid_argument("plan: unknown fragment '" + name + "'");
-    if (scene_.fragments[*f].free) throw std::invalid_argument("plan: fragment '" + name + "' is free; only prescribed fragments can be planned");
+    if (scene_.fragments[*f].free)
+      throw std::invalid_argument("plan: fragment '" + name + "' is free; only prescribed fragments can be planned");
     if (!motion.translation.allFinite() || !motion.rotation.allFinite() || !motion.center.allFinite())
       throw std::invalid_argument("plan: fragment '" + name + "' has a non-finite value");
   }
@@ -32,8 +33,9 @@ Model::Model(Scene scene) : scene_(std::move(scene)) {
   system_->assemble(rest, energy_->gradient(rest.x), false);
   restFactor_.analyze(system_->matrix());
   if (!restFactor_.factorize(system_->matrix()))
-    throw std::invalid_argument("part of the tissue is held by nothing (the stiffness matrix at rest is singular): "
-                                "check that every connected piece of tissue has fixed or bonded nodes");
+    throw std::invalid_argument(
+        "part of the tissue is held by nothing (the stiffness matrix at rest is singular): "
+        "check that every connected piece of tissue has fixed or bonded nodes");
   buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -63,10 +65,13 @@ void Model::buildContact() {
     if (!c.fragment.empty()) {
       const auto f = scene_.fragmentIndex(c.fragment);
       if (!f) throw std::invalid_argument(where + ": unknown fragment '" + c.fragment + "'");
-      if (scene_.fragments[*f].free) throw std::invalid_argument(where + ": fragment '" + c.fragment + "' is free; contact needs a planned or fixed surface");
+      if (scene_.fragments[*f].free)
+        throw std::invalid_argument(where + ": fragment '" + c.fragment +
+                                    "' is free; contact needs a planned or fixed surface");
       pair.fragment = *f;
     }
-    if (c.stiffness < 0 || !std::isfinite(c.stiffness)) throw std::invalid_argument(where + ": stiffness must be positive (N/mm), or 0 for the default");
+    if (c.stiffness < 0 || !std::isfinite(c.stiffness))
+      throw std::invalid_argument(where + ": stiffness must be positive (N/mm), or 0 for the default");
     pair.stiffness = c.stiffness > 0 ? c.stiffness : defaultStiffness;
     try {
       pair.surface = std::make_shared<RigidSurface>(c.surface);
@@ -74,7 +79,8 @@ void Model::buildContact() {
       throw std::invalid_argument(where + ": " + e.what());
     }
     for (int n : c.nodes) {
-      if (n < 0 || n >= scene_.mesh.numNodes()) throw std::invalid_argument(where + ": node " + std::to_string(n) + " is outside the mesh");
+      if (n < 0 || n >= scene_.mesh.numNodes())
+        throw std::invalid_argument(where + ": node " + std::to_string(n) + " is outside the mesh");
       const bool free = coupling_->dof(n, 0) >= 0 || coupling_->dof(n, 1) >= 0 || coupling_->dof(n, 2) >= 0;
       if (free && !coupling_->dependsOnFreeFragment(n)) pair.nodes.push_back(n);
     }

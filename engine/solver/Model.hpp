@@ -31,7 +31,9 @@ class Model {
   const Scene& scene() const { return scene_; }
   // Restricted to the elements the solve can change (SoftTissueEnergy::restrictTo).
   const SoftTissueEnergy& energy() const { return *energy_; }
-  int numPrescribedElements() const { return scene_.mesh.numTets() - static_cast<int>(energy_->activeElements().size()); }
+  int numPrescribedElements() const {
+    return scene_.mesh.numTets() - static_cast<int>(energy_->activeElements().size());
+  }
   const Coupling& coupling() const { return *coupling_; }
   ReducedSystem& system() { return *system_; }
   const ReducedSystem& system() const { return *system_; }

@@ -1,9 +1,9 @@
 #include "solver/NewtonSolver.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -22,7 +22,12 @@ struct Stopwatch {
 class Newton {
  public:
   Newton(Model& model, const SolverSettings& settings, SolveTimings& timings, const SolveControl& control, bool atRest)
-      : model_(model), coupling_(model.coupling()), settings_(settings), t_(timings), control_(control), atRest_(atRest) {}
+      : model_(model),
+        coupling_(model.coupling()),
+        settings_(settings),
+        t_(timings),
+        control_(control),
+        atRest_(atRest) {}
 
   SubstepReport run(const BoundaryTargets& targets, SimState& state) {
     SubstepReport rep;
@@ -58,8 +63,8 @@ class Newton {
       // search), a shorter substep is cheaper than running out the iterations.
       history.push_back(rep.residual);
       if (history.size() > kStallWindow && rep.residual > 0.1 * history[history.size() - 1 - kStallWindow])
-        return fail(rep, "Newton stalled: the residual (" + std::to_string(rep.residual) + " N) did not drop tenfold in " +
-                             std::to_string(kStallWindow) + " iterations");
+        return fail(rep, "Newton stalled: the residual (" + std::to_string(rep.residual) +
+                             " N) did not drop tenfold in " + std::to_string(kStallWindow) + " iterations");
       // In the fast-converging regime (a full step cut the residual fourfold) the Hessian barely
       // changes: reuse the factorisation (a chord step) instead of refactoring.
       const bool chord = model_.factor().valid() && it > 0 && lastAlpha == 1.0 && rep.residual < 0.25 * lastResidual;
@@ -135,7 +140,8 @@ class Newton {
     {
       Stopwatch w{t_.assembly};
       g = model_.totalGradient(x);
-      rhs = -(coupling_.reduce(g, x) + model_.system().hessianTimes(x, dxc, settings_.hessian == HessianMode::Projected));
+      rhs =
+          -(coupling_.reduce(g, x) + model_.system().hessianTimes(x, dxc, settings_.hessian == HessianMode::Projected));
     }
     if (dxc.isZero(0.0) && coupling_.forceNorm(rhs) <= model_.forceTolerance()) {  // nothing moves: no prediction
       x = std::move(moved);  // the poses of node-less fragments (contact surfaces) still change

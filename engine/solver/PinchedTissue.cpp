@@ -45,7 +45,8 @@ std::vector<PinchedTissue> findPinchedTissue(const Model& model, const Eigen::Ma
   }
   std::vector<PinchedTissue> out;
   for (auto& [names, p] : groups) out.push_back(std::move(p));
-  std::sort(out.begin(), out.end(), [](const PinchedTissue& a, const PinchedTissue& b) { return a.minDetF < b.minDetF; });
+  std::sort(out.begin(), out.end(),
+            [](const PinchedTissue& a, const PinchedTissue& b) { return a.minDetF < b.minDetF; });
   return out;
 }
 
@@ -54,16 +55,17 @@ std::string describePinchedTissue(const PinchedTissue& p) {
   for (size_t i = 0; i < p.fragments.size(); ++i)
     names += (i == 0 ? "" : i + 1 == p.fragments.size() ? " and " : ", ") + p.fragments[i];
   char figures[160];
-  std::snprintf(figures, sizeof figures, "%d tetrahedra below %.3g of their volume, %d inverted, min det F %.3g", p.elements,
-                p.threshold, p.inverted, p.minDetF);
+  std::snprintf(figures, sizeof figures, "%d tetrahedra below %.3g of their volume, %d inverted, min det F %.3g",
+                p.elements, p.threshold, p.inverted, p.minDetF);
   std::string text = "tissue moved only by " + names + " is crushed by the plan (" + figures + ")";
   if (p.slivers == p.elements)
     return text + ": " + (p.elements == 1 ? "it is a sliver" : "all are slivers") +
            " of the mesh (flat at rest), which a small difference between the pieces turns over; the rest of the "
            "tissue is solved, a better mesh there removes it";
   if (p.slivers > 0) text += ", " + std::to_string(p.slivers) + " of them slivers of the mesh (flat at rest)";
-  return text + ": the pieces move into each other there, or turn too differently for the blend across their cut; "
-                "check the bone positions";
+  return text +
+         ": the pieces move into each other there, or turn too differently for the blend across their cut; "
+         "check the bone positions";
 }
 
 }  // namespace orthosim

@@ -18,7 +18,7 @@ struct PinchedTissue {
   int inverted = 0;                    // of which det F <= 0
   int slivers = 0;                     // of which flat at rest (min dihedral below kSliverDeg)
   double minDetF = 1.0;
-  double threshold = 0.1;              // det F below which an element counts
+  double threshold = 0.1;  // det F below which an element counts
 };
 
 // A tetrahedron this flat at rest is a sliver of the mesh: the small non-rigid motion of a blend

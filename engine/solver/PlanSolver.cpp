@@ -49,7 +49,7 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
   const double nominal = settings.substeps > 0 ? 1.0 / settings.substeps : 1.0;
   const double minStep = nominal / double(1 << std::min(settings.maxRefinements, 30));
   double s = 0.0, ds = nominal;
-  int spent = 0;  // iterations of every substep so far, failed ones included
+  int spent = 0;                // iterations of every substep so far, failed ones included
   model.factor().invalidate();  // the factor may belong to another state
   while (s < 1.0) {
     if (spent >= settings.maxTotalIterations) {
@@ -88,9 +88,9 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
     ds *= 0.5;
     ++r.refinements;
     if (ds < minStep) {
-      r.error = "the solve did not converge: substep " + std::to_string(s) + " -> " + std::to_string(s1) +
-                " failed (" + failure + ") after " + std::to_string(r.refinements) +
-                " refinements; the state at load fraction " + std::to_string(s) + " is kept";
+      r.error = "the solve did not converge: substep " + std::to_string(s) + " -> " + std::to_string(s1) + " failed (" +
+                failure + ") after " + std::to_string(r.refinements) + " refinements; the state at load fraction " +
+                std::to_string(s) + " is kept";
       break;
     }
   }

@@ -128,9 +128,12 @@ ReducedSystem::ReducedSystem(const SoftTissueEnergy& energy, const Coupling& cou
   }
 }
 
-Eigen::Matrix<double, 12, Eigen::Dynamic> ReducedSystem::localJacobian(const GeneralElement& g, const SimState& s) const {
+Eigen::Matrix<double, 12, Eigen::Dynamic> ReducedSystem::localJacobian(const GeneralElement& g,
+                                                                       const SimState& s) const {
   const int m = static_cast<int>(g.dofs.size());
-  auto local = [&](int d) { return static_cast<int>(std::lower_bound(g.dofs.begin(), g.dofs.end(), d) - g.dofs.begin()); };
+  auto local = [&](int d) {
+    return static_cast<int>(std::lower_bound(g.dofs.begin(), g.dofs.end(), d) - g.dofs.begin());
+  };
   Eigen::Matrix<double, 12, Eigen::Dynamic> J = Eigen::Matrix<double, 12, Eigen::Dynamic>::Zero(12, m);
   for (int a = 0; a < 4; ++a) {
     const int node = energy_.mesh().tets(a, g.element);
@@ -211,12 +214,14 @@ void ReducedSystem::addRotationCurvature(const SimState& state, const Eigen::Mat
     }
     for (int c = 0; c < 3; ++c)
       for (int r = 0; r < 3; ++r)
-        if (rotationBlockIndex_[9 * k + 3 * c + r] >= 0) H_.valuePtr()[rotationBlockIndex_[9 * k + 3 * c + r]] += Mp(r, c);
+        if (rotationBlockIndex_[9 * k + 3 * c + r] >= 0)
+          H_.valuePtr()[rotationBlockIndex_[9 * k + 3 * c + r]] += Mp(r, c);
     ++k;
   }
 }
 
-Eigen::VectorXd ReducedSystem::hessianTimes(const SimState& state, const Eigen::Matrix3Xd& dx, bool projectToPSD) const {
+Eigen::VectorXd ReducedSystem::hessianTimes(const SimState& state, const Eigen::Matrix3Xd& dx,
+                                            bool projectToPSD) const {
   const TetMesh& mesh = energy_.mesh();
   Eigen::VectorXd out = Eigen::VectorXd::Zero(coupling_.numReducedDofs());
   auto localMove = [&](int e, Vector12d& v) {
@@ -238,7 +243,8 @@ Eigen::VectorXd ReducedSystem::hessianTimes(const SimState& state, const Eigen::
   }
   for (const auto& ge : general_) {
     if (!localMove(ge.element, v)) continue;
-    const Eigen::VectorXd f = localJacobian(ge, state).transpose() * (energy_.elementHessian(ge.element, state.x, projectToPSD) * v);
+    const Eigen::VectorXd f =
+        localJacobian(ge, state).transpose() * (energy_.elementHessian(ge.element, state.x, projectToPSD) * v);
     for (size_t r = 0; r < ge.dofs.size(); ++r) out[ge.dofs[r]] += f[r];
   }
   return out;

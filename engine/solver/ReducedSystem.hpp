@@ -30,7 +30,7 @@ class ReducedSystem {
  private:
   struct GeneralElement {
     int element;
-    std::vector<int> dofs;  // sorted reduced DoFs
+    std::vector<int> dofs;   // sorted reduced DoFs
     std::vector<int> index;  // dofs^2 value indices, -1 above the diagonal
   };
   Eigen::Matrix<double, 12, Eigen::Dynamic> localJacobian(const GeneralElement& g, const SimState& s) const;
@@ -40,7 +40,7 @@ class ReducedSystem {
   const Coupling& coupling_;
   Eigen::SparseMatrix<double> H_;
   std::vector<int> simpleElements_;
-  std::vector<int> simpleIndex_;  // 144 per simple element, -1 where not scattered
+  std::vector<int> simpleIndex_;          // 144 per simple element, -1 where not scattered
   std::vector<std::vector<int>> colors_;  // simple elements grouped so that none share a node
   std::vector<int> serialSlots_;          // simple elements left over after 64 colours
   std::vector<GeneralElement> general_;

@@ -16,7 +16,7 @@ struct SolveProgress {
 
 struct SolveControl {
   std::function<void(const SolveProgress&)> onProgress;  // after every converged substep
-  const std::atomic<bool>* cancel = nullptr;            // set to true to stop the solve
+  const std::atomic<bool>* cancel = nullptr;             // set to true to stop the solve
   // A time budget (an interactive preview's): past it the solve stops like a cancel, keeping the
   // last converged state, and says so.
   std::optional<std::chrono::steady_clock::time_point> deadline;

@@ -8,11 +8,11 @@
 namespace orthosim {
 
 struct SolveTimings {
-  double assembly = 0;       // gradients and reduced Hessians
-  double factorization = 0;  // CHOLMOD numeric factorisations
-  double solve = 0;          // triangular solves
-  double lineSearch = 0;     // energy evaluations of trial states
-  double contact = 0;        // contact queries (inside the other phases' times)
+  double assembly = 0;           // gradients and reduced Hessians
+  double factorization = 0;      // CHOLMOD numeric factorisations
+  double solve = 0;              // triangular solves
+  double lineSearch = 0;         // energy evaluations of trial states
+  double contact = 0;            // contact queries (inside the other phases' times)
   long long contactQueries = 0;  // node-surface distance queries; 0 in a scene without contact
   double total = 0;
   int factorizations = 0;
@@ -27,20 +27,20 @@ struct SubstepReport {
   double energy = 0;        // N mm
   double minDetF = 0;
   bool converged = false;
-  std::string failure;      // why it did not converge
+  std::string failure;  // why it did not converge
 };
 
 struct SolveResult {
   bool converged = false;
-  std::string error;          // set when !converged
-  double loadFraction = 0;    // of the plan reached by `state`
-  SimState state;             // the last converged state (the start state if none converged)
-  std::vector<SubstepReport> substeps;  // every attempt, failed ones included
-  int iterations = 0;         // Newton iterations of the converged substeps
-  int chordIterations = 0;    // of which reused a factorisation
-  int refinements = 0;        // substeps halved after a failure
+  std::string error;                             // set when !converged
+  double loadFraction = 0;                       // of the plan reached by `state`
+  SimState state;                                // the last converged state (the start state if none converged)
+  std::vector<SubstepReport> substeps;           // every attempt, failed ones included
+  int iterations = 0;                            // Newton iterations of the converged substeps
+  int chordIterations = 0;                       // of which reused a factorisation
+  int refinements = 0;                           // substeps halved after a failure
   double energy = 0, residual = 0, minDetF = 0;  // minDetF: over the elements the solve can change
-  std::vector<std::string> warnings;  // about the returned state (tissue the plan itself crushes)
+  std::vector<std::string> warnings;             // about the returned state (tissue the plan itself crushes)
   SolveTimings timings;
 };
 

@@ -9,11 +9,11 @@
 namespace orthosim::server {
 
 struct CaseEntry {
-  std::string id;           // stable identifier a client names the case by, e.g. "phantom-0"
-  std::string name;         // short name, e.g. "class-I"
-  std::string description;  // for a human
-  std::string source;       // where it comes from: "phantom" or "folder"
-  int phantomVariant = -1;  // for source "phantom"
+  std::string id;                  // stable identifier a client names the case by, e.g. "phantom-0"
+  std::string name;                // short name, e.g. "class-I"
+  std::string description;         // for a human
+  std::string source;              // where it comes from: "phantom" or "folder"
+  int phantomVariant = -1;         // for source "phantom"
   std::filesystem::path caseFile;  // for source "folder": DIR/<id>/case.json
 };
 

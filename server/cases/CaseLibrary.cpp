@@ -41,7 +41,8 @@ std::string CaseLibrary::caseFile(const CaseEntry& entry) {
   fs::rename(tmp, dir, ec);  // a folder with case.json is always complete
   if (ec) {
     fs::remove_all(tmp);
-    if (!fs::is_regular_file(file)) throw std::runtime_error("cannot store the phantom in " + dir.string() + ": " + ec.message());
+    if (!fs::is_regular_file(file))
+      throw std::runtime_error("cannot store the phantom in " + dir.string() + ": " + ec.message());
   }
   return file.string();
 }

@@ -34,13 +34,14 @@ double factorizationSeconds(Model& model, int repeats) {
 }  // namespace
 
 int runBench(const BenchOptions& opt) {
-  std::printf("orthosim bench: FEBio-style block 60x40x20 mm, body B moved by t=(0,5,3) mm, 5 deg about z;\n"
-              "adaptive substeps, default tolerances; %u hardware threads\n"
-              "build_s: model build (pattern, symbolic analysis, rest factorisation); first_s: first solve;\n"
-              "solve_s: median of the next %d solves; factor_s: median\n"
-              "numeric factorisation; solve/fac = solve_s / factor_s; err_mm: max node distance to a\n"
-              "solve of the same model converged to 1e-9 of an edge\n\n",
-              std::thread::hardware_concurrency(), opt.repeats);
+  std::printf(
+      "orthosim bench: FEBio-style block 60x40x20 mm, body B moved by t=(0,5,3) mm, 5 deg about z;\n"
+      "adaptive substeps, default tolerances; %u hardware threads\n"
+      "build_s: model build (pattern, symbolic analysis, rest factorisation); first_s: first solve;\n"
+      "solve_s: median of the next %d solves; factor_s: median\n"
+      "numeric factorisation; solve/fac = solve_s / factor_s; err_mm: max node distance to a\n"
+      "solve of the same model converged to 1e-9 of an edge\n\n",
+      std::thread::hardware_concurrency(), opt.repeats);
   std::printf("%9s %8s %8s %9s %9s %9s %7s %6s %10s %10s %9s %9s\n", "tets", "nodes", "dofs", "build_s", "first_s",
               "solve_s", "newton", "chord", "factor_s", "solve/fac", "substeps", "err_mm");
   nlohmann::json rows = nlohmann::json::array();
@@ -55,7 +56,8 @@ int runBench(const BenchOptions& opt) {
     for (int r = 0; r <= opt.repeats; ++r) {
       last = solveScene(model);
       if (!last.converged) {
-        std::fprintf(stderr, "orthosim bench: %d tets did not converge: %s\n", model.scene().mesh.numTets(), last.error.c_str());
+        std::fprintf(stderr, "orthosim bench: %d tets did not converge: %s\n", model.scene().mesh.numTets(),
+                     last.error.c_str());
         return 2;
       }
       if (r == 0)

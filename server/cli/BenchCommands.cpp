@@ -12,15 +12,18 @@ void addJson(CLI::App* sub, std::string& path) {
 }
 
 void addPlan(CLI::App* sub, std::string& path) {
-  sub->add_option("--plan", path, "A JSON file {fragment: {translation_mm, rotation_deg, center_mm}} solved instead of "
-                                  "the case's plan")->check(CLI::ExistingFile);
+  sub->add_option("--plan", path,
+                  "A JSON file {fragment: {translation_mm, rotation_deg, center_mm}} solved instead of "
+                  "the case's plan")
+      ->check(CLI::ExistingFile);
 }
 
 }  // namespace
 
 BenchCommands::BenchCommands(CLI::App& app) {
-  bench_ = app.add_subcommand("bench", "Time and measure: generated blocks, case models, the planning server, "
-                                       "rendering, the synthetic cohort");
+  bench_ = app.add_subcommand("bench",
+                              "Time and measure: generated blocks, case models, the planning server, "
+                              "rendering, the synthetic cohort");
   bench_->require_subcommand(1);
   addBlocks();
   addPhantom();
@@ -38,7 +41,8 @@ void BenchCommands::addBlocks() {
 }
 
 void BenchCommands::addPhantom() {
-  phantom_ = bench_->add_subcommand("phantom", "Time building the phantom's coarse and fine models and solving its plan");
+  phantom_ =
+      bench_->add_subcommand("phantom", "Time building the phantom's coarse and fine models and solving its plan");
   phantom_->add_option("--variant", phantomOptions_.phantomVariant, "Phantom variant")->check(CLI::Range(0, 100));
   addPlan(phantom_, phantomOptions_.planPath);
   addRepeats(phantom_, phantomOptions_.repeats, "Runs (medians reported)");
@@ -46,8 +50,11 @@ void BenchCommands::addPhantom() {
 }
 
 void BenchCommands::addCase() {
-  case_ = bench_->add_subcommand("case", "Time building a surface-based case's coarse and fine models and solving its plan");
-  case_->add_option("case", caseOptions_.casePath, "Surface-based case file (JSON)")->required()->check(CLI::ExistingFile);
+  case_ = bench_->add_subcommand("case",
+                                 "Time building a surface-based case's coarse and fine models and solving its plan");
+  case_->add_option("case", caseOptions_.casePath, "Surface-based case file (JSON)")
+      ->required()
+      ->check(CLI::ExistingFile);
   addPlan(case_, caseOptions_.planPath);
   addRepeats(case_, caseOptions_.repeats, "Runs (medians reported)");
   addJson(case_, caseOptions_.jsonPath);
@@ -55,8 +62,9 @@ void BenchCommands::addCase() {
 
 void BenchCommands::addLatency() {
   latencyOptions_.webDir = ORTHOSIM_WEB_DIR;
-  latency_ = bench_->add_subcommand("latency", "Time coarse previews through the planning server (WebSocket round "
-                                               "trips on the phantom)");
+  latency_ = bench_->add_subcommand("latency",
+                                    "Time coarse previews through the planning server (WebSocket round "
+                                    "trips on the phantom)");
   latency_->add_option("--changes", latencyOptions_.changes, "Pose changes")->check(CLI::Range(1, 10000));
   latency_->add_option("--data", latencyOptions_.dataDir, "Data folder (phantom and mesh cache, reused)");
   latency_->add_option("--variant", latencyOptions_.phantomVariant, "Phantom variant")->check(CLI::Range(0, 100));
@@ -64,8 +72,9 @@ void BenchCommands::addLatency() {
 }
 
 void BenchCommands::addRender() {
-  render_ = bench_->add_subcommand("render", "Time off-screen rendering: orbiting the phantom's predicted face at "
-                                             "coarse and fine resolution (render + read back + JPEG encode)");
+  render_ = bench_->add_subcommand("render",
+                                   "Time off-screen rendering: orbiting the phantom's predicted face at "
+                                   "coarse and fine resolution (render + read back + JPEG encode)");
   render_->add_option("--frames", renderOptions_.frames, "Frames per turn around the head")->check(CLI::Range(4, 3600));
   render_->add_option("--width", renderOptions_.width, "Image width")->check(CLI::Range(16, 8192));
   render_->add_option("--height", renderOptions_.height, "Image height")->check(CLI::Range(16, 8192));
@@ -75,21 +84,29 @@ void BenchCommands::addRender() {
 
 void BenchCommands::addCohort() {
   CohortBenchOptions& o = cohortOptions_;
-  cohort_ = bench_->add_subcommand("cohort", "The synthetic cohort (ten phantom patients): coarse and fine against a "
-                                             "finer reference, Table 4, speed-versus-error plot, soft-to-hard movement ratios");
+  cohort_ = bench_->add_subcommand("cohort",
+                                   "The synthetic cohort (ten phantom patients): coarse and fine against a "
+                                   "finer reference, Table 4, speed-versus-error plot, soft-to-hard movement ratios");
   cohort_->add_option("--patients", o.patients, "The first N patients (0: only --face)")->check(CLI::Range(0, 10));
   cohort_->add_option("--patient", o.patientIds, "Only these patients (e.g. --patient M4 --patient M9)");
-  cohort_->add_option("--face", o.facePath, "Also the soft-to-hard ratios of the ArtiSynth face (../shared/cases/artisynth_face)");
+  cohort_->add_option("--face", o.facePath,
+                      "Also the soft-to-hard ratios of the ArtiSynth face (../shared/cases/artisynth_face)");
   cohort_->add_option("--image", o.imagePath, "The speed-versus-error plot (.png or .jpg)");
   cohort_->add_option("--coarse-triangles", o.coarseTriangles, "Coarse skin triangles");
   cohort_->add_option("--fine-triangles", o.fineTriangles, "Fine skin triangles");
   cohort_->add_option("--reference-triangles", o.referenceTriangles, "The reference's skin triangles");
-  cohort_->add_option("--reference-tolerance", o.referenceToleranceScale,
-                      "The reference's tolerances as a multiple of the defaults")->check(CLI::Range(1e-9, 1.0));
-  cohort_->add_flag("--no-contact", o.noContact, "Leave out the lips-teeth contact (a quick check; not the product's model)");
-  cohort_->add_option("--sweep-patients", o.sweepPatients,
-                      "Patients also solved over more resolutions and tolerances for the plot")->check(CLI::Range(0, 10));
-  cohort_->add_option("--data", o.dataDir, "Folder for the cohort's cases and tissue cache (kept; default: a temporary one)");
+  cohort_
+      ->add_option("--reference-tolerance", o.referenceToleranceScale,
+                   "The reference's tolerances as a multiple of the defaults")
+      ->check(CLI::Range(1e-9, 1.0));
+  cohort_->add_flag("--no-contact", o.noContact,
+                    "Leave out the lips-teeth contact (a quick check; not the product's model)");
+  cohort_
+      ->add_option("--sweep-patients", o.sweepPatients,
+                   "Patients also solved over more resolutions and tolerances for the plot")
+      ->check(CLI::Range(0, 10));
+  cohort_->add_option("--data", o.dataDir,
+                      "Folder for the cohort's cases and tissue cache (kept; default: a temporary one)");
   addRepeats(cohort_, o.repeats, "Solves per run (medians reported)");
   addJson(cohort_, o.jsonPath);
 }

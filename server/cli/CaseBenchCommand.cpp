@@ -1,6 +1,7 @@
 // `orthosim bench case FILE` (or `bench phantom`): how long a case takes to become a model, cold and
 // from the cache, at coarse and fine resolution, with the counts and mesh quality, the solve of
 // the case's plan, and how far the coarse prediction lies from the fine one on the same skin.
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -8,7 +9,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
-#include <unistd.h>
 
 #include "cli/Commands.hpp"
 #include "eval/Statistics.hpp"
@@ -60,7 +60,8 @@ ResolutionFigures benchResolution(const CaseSpec& spec, Resolution res, int repe
     model = std::make_unique<Model>(scene);
     modelBuild.push_back(since(t0));
     result = solveScene(*model);
-    if (!result.converged) throw std::runtime_error(std::string(resolutionName(res)) + " solve failed: " + result.error);
+    if (!result.converged)
+      throw std::runtime_error(std::string(resolutionName(res)) + " solve failed: " + result.error);
     solve.push_back(result.timings.total);
     contact.push_back(result.timings.contact);
   }
@@ -86,8 +87,8 @@ ResolutionFigures benchResolution(const CaseSpec& spec, Resolution res, int repe
            {"chord_iterations", result.chordIterations}};
   std::printf("%-7s %8d %8d %8d %7.1f %7.2f %9.2f %9s %9.3f %8.3f %4d+%d\n", resolutionName(res), tissue.skinTriangles,
               q.nodes, q.tets, q.minDihedralDeg, q.maxRadiusEdgeRatio, median(cold),
-              cached.empty() ? "-" : std::to_string(median(cached)).substr(0, 6).c_str(), median(modelBuild), median(solve),
-              result.iterations, result.chordIterations);
+              cached.empty() ? "-" : std::to_string(median(cached)).substr(0, 6).c_str(), median(modelBuild),
+              median(solve), result.iterations, result.chordIterations);
   if (!scene.contacts.empty())
     std::printf("        contact: %zu pairs, %.4f s of the %.3f s solve (%.1f%%), %lld distance queries\n",
                 scene.contacts.size(), median(contact), median(solve), 100 * median(contact) / median(solve),
@@ -109,12 +110,13 @@ int runCaseBench(const CaseBenchOptions& opt) {
   }
   CaseSpec spec = loadCaseFile(casePath);
   if (!opt.planPath.empty()) spec.plan = loadPlanFile(opt.planPath, spec);
-  std::printf("orthosim bench: case '%s', medians of %d runs; %u hardware threads\n"
-              "cold_s: surfaces to tetrahedra without cache; cached_s: the same read from the cache;\n"
-              "model_s: solver model build (pattern, analysis, rest factorisation); solve_s: the case's plan\n\n",
-              spec.name.c_str(), opt.repeats, std::thread::hardware_concurrency());
-  std::printf("%-7s %8s %8s %8s %7s %7s %9s %9s %9s %8s %6s\n", "res", "skin_tri", "nodes", "tets", "min_dih", "max_r/e",
-              "cold_s", "cached_s", "model_s", "solve_s", "iter");
+  std::printf(
+      "orthosim bench: case '%s', medians of %d runs; %u hardware threads\n"
+      "cold_s: surfaces to tetrahedra without cache; cached_s: the same read from the cache;\n"
+      "model_s: solver model build (pattern, analysis, rest factorisation); solve_s: the case's plan\n\n",
+      spec.name.c_str(), opt.repeats, std::thread::hardware_concurrency());
+  std::printf("%-7s %8s %8s %8s %7s %7s %9s %9s %9s %8s %6s\n", "res", "skin_tri", "nodes", "tets", "min_dih",
+              "max_r/e", "cold_s", "cached_s", "model_s", "solve_s", "iter");
   nlohmann::json out = {{"case", spec.name}, {"repeats", opt.repeats}};
   const std::string cacheDir = (work / "cache").string();
   const ResolutionFigures coarse = benchResolution(spec, Resolution::Coarse, opt.repeats, cacheDir);
@@ -124,8 +126,10 @@ int runCaseBench(const CaseBenchOptions& opt) {
     out["fine"] = fine.row;
     // Coarse against fine on the same full-resolution skin.
     std::vector<double> d(static_cast<size_t>(coarse.skin.numVertices()));
-    for (int i = 0; i < coarse.skin.numVertices(); ++i) d[i] = (coarse.skin.vertices.col(i) - fine.skin.vertices.col(i)).norm();
-    out["coarse_vs_fine_mm"] = {{"median", median(d)}, {"p95", percentile(d, 0.95)}, {"max", *std::max_element(d.begin(), d.end())}};
+    for (int i = 0; i < coarse.skin.numVertices(); ++i)
+      d[i] = (coarse.skin.vertices.col(i) - fine.skin.vertices.col(i)).norm();
+    out["coarse_vs_fine_mm"] = {
+        {"median", median(d)}, {"p95", percentile(d, 0.95)}, {"max", *std::max_element(d.begin(), d.end())}};
     std::printf("\ncoarse vs fine skin prediction: median %.3f mm, 95th percentile %.3f mm, max %.3f mm\n", median(d),
                 percentile(d, 0.95), *std::max_element(d.begin(), d.end()));
   }

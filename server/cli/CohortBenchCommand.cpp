@@ -4,6 +4,7 @@
 // a speed-versus-error plot over mesh resolutions and solver tolerances, and the soft-to-hard
 // movement ratios at the landmarks beside the published bands (engine/eval/Plausibility). The
 // runs, measurements, ratios and their JSON are engine/eval's; this file prints and collects them.
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -13,7 +14,6 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <thread>
-#include <unistd.h>
 
 #include "cli/Commands.hpp"
 #include "eval/Cohort.hpp"
@@ -68,29 +68,34 @@ int runCohortBench(const CohortBenchOptions& opt) {
     const std::vector<CohortPatient> cohort = selectPatients(opt);
     const int n = static_cast<int>(cohort.size());
     if (n < 1 && opt.facePath.empty()) throw std::invalid_argument("no patient and no --face: nothing to measure");
-    if (opt.coarseTriangles < 200 || opt.fineTriangles <= opt.coarseTriangles || opt.referenceTriangles <= opt.fineTriangles)
+    if (opt.coarseTriangles < 200 || opt.fineTriangles <= opt.coarseTriangles ||
+        opt.referenceTriangles <= opt.fineTriangles)
       throw std::invalid_argument("need 200 <= coarse < fine < reference skin triangles (got " +
-                                  std::to_string(opt.coarseTriangles) + ", " + std::to_string(opt.fineTriangles) + ", " +
-                                  std::to_string(opt.referenceTriangles) + ")");
+                                  std::to_string(opt.coarseTriangles) + ", " + std::to_string(opt.fineTriangles) +
+                                  ", " + std::to_string(opt.referenceTriangles) + ")");
     const std::string startedAt = utcNow(), loadAtStart = loadAverage();
     const bool tempData = opt.dataDir.empty();
-    const fs::path data = tempData ? fs::temp_directory_path() / ("orthosim_cohort_" + std::to_string(::getpid())) : fs::path(opt.dataDir);
+    const fs::path data = tempData ? fs::temp_directory_path() / ("orthosim_cohort_" + std::to_string(::getpid()))
+                                   : fs::path(opt.dataDir);
     fs::create_directories(data);
     const std::string cacheDir = (data / "cache").string();
 
-    std::printf("orthosim bench cohort: %d of %zu phantom patients (engine/eval/Cohort), %u hardware threads (load average %s), "
-                "solve times medians of %d\n"
-                "reference: each patient's plan on a mesh of %d skin triangles, solved to %g of the default tolerances\n"
-                "  (force %g E h^2, step %g h; up to %d iterations): a discretisation reference, not clinical truth\n"
-                "coarse: %d, fine: %d skin triangles (lips x3, nose x3, chin x2 the density), default tolerances;\n"
-                "within: share of the face region's skin area within 1 / 3 mm of the reference%s\n\n",
-                n, cohortPatients().size(), std::thread::hardware_concurrency(), loadAtStart.c_str(), opt.repeats, opt.referenceTriangles,
-                opt.referenceToleranceScale, 1e-4 * opt.referenceToleranceScale, 1e-4 * opt.referenceToleranceScale, kCohortReferenceIterations,
-                opt.coarseTriangles, opt.fineTriangles,
-                opt.noContact ? "\nWITHOUT lips-teeth contact (--no-contact: a quick check, not the product's model)" : "");
+    std::printf(
+        "orthosim bench cohort: %d of %zu phantom patients (engine/eval/Cohort), %u hardware threads (load average "
+        "%s), "
+        "solve times medians of %d\n"
+        "reference: each patient's plan on a mesh of %d skin triangles, solved to %g of the default tolerances\n"
+        "  (force %g E h^2, step %g h; up to %d iterations): a discretisation reference, not clinical truth\n"
+        "coarse: %d, fine: %d skin triangles (lips x3, nose x3, chin x2 the density), default tolerances;\n"
+        "within: share of the face region's skin area within 1 / 3 mm of the reference%s\n\n",
+        n, cohortPatients().size(), std::thread::hardware_concurrency(), loadAtStart.c_str(), opt.repeats,
+        opt.referenceTriangles, opt.referenceToleranceScale, 1e-4 * opt.referenceToleranceScale,
+        1e-4 * opt.referenceToleranceScale, kCohortReferenceIterations, opt.coarseTriangles, opt.fineTriangles,
+        opt.noContact ? "\nWITHOUT lips-teeth contact (--no-contact: a quick check, not the product's model)" : "");
     if (n > 0)
-      std::printf("%-4s %-10s %-22s | %7s %6s %8s %7s %7s | %7s %6s %8s %7s %7s | %7s %7s\n", "id", "diagnosis", "procedure",
-                "c_tri", "c_tets", "c_solve", "c<1mm", "c<3mm", "f_tri", "f_tets", "f_solve", "f<1mm", "f<3mm", "r_tri", "r_solve");
+      std::printf("%-4s %-10s %-22s | %7s %6s %8s %7s %7s | %7s %6s %8s %7s %7s | %7s %7s\n", "id", "diagnosis",
+                  "procedure", "c_tri", "c_tets", "c_solve", "c<1mm", "c<3mm", "f_tri", "f_tets", "f_solve", "f<1mm",
+                  "f<3mm", "r_tri", "r_solve");
     std::fflush(stdout);
 
     json patients = json::array(), sweep = json::array();
@@ -99,8 +104,11 @@ int runCohortBench(const CohortBenchOptions& opt) {
     plot.xLabel = "solve time (s, log scale)";
     plot.yLabel = "face area within 1 mm (%)";
     plot.logX = true;
-    plot.series = {{"coarse", {31, 119, 180}}, {"fine", {214, 39, 40}}, {"sweep: default tol.", {44, 160, 44}},
-                   {"sweep: tol. x100 looser", {255, 127, 14}}, {"sweep: tol. x0.01 tighter", {148, 103, 189}}};
+    plot.series = {{"coarse", {31, 119, 180}},
+                   {"fine", {214, 39, 40}},
+                   {"sweep: default tol.", {44, 160, 44}},
+                   {"sweep: tol. x100 looser", {255, 127, 14}},
+                   {"sweep: tol. x0.01 tighter", {148, 103, 189}}};
     std::vector<std::vector<MovementRatio>> allRatios;
     std::vector<std::string> rowNames;
     int failed = 0;
@@ -114,14 +122,16 @@ int runCohortBench(const CohortBenchOptions& opt) {
       std::string referenceNote;
       try {
         try {
-          ref = solveCohortRun(spec, {"reference", opt.referenceTriangles, opt.referenceToleranceScale, kCohortReferenceIterations},
-                               1, cacheDir);
+          ref = solveCohortRun(
+              spec, {"reference", opt.referenceTriangles, opt.referenceToleranceScale, kCohortReferenceIterations}, 1,
+              cacheDir);
         } catch (const std::exception& e) {
           // Newton can stall with contact short of the tight tolerances: the same fine mesh at the
           // default ones (step 1e-4 h, far below a millimetre) is still a discretisation reference.
           if (opt.referenceToleranceScale == 1.0) throw;
           referenceNote = std::string("reference at the default tolerances: the tight solve failed: ") + e.what();
-          ref = solveCohortRun(spec, {"reference", opt.referenceTriangles, 1.0, kCohortReferenceIterations}, 1, cacheDir);
+          ref =
+              solveCohortRun(spec, {"reference", opt.referenceTriangles, 1.0, kCohortReferenceIterations}, 1, cacheDir);
         }
         coarse = solveCohortRun(spec, {"coarse", opt.coarseTriangles, 1.0}, opt.repeats, cacheDir);
         fine = solveCohortRun(spec, {"fine", opt.fineTriangles, 1.0}, opt.repeats, cacheDir);
@@ -130,18 +140,22 @@ int runCohortBench(const CohortBenchOptions& opt) {
       } catch (const std::exception& e) {
         // A patient that cannot be measured is reported and the others go on; the exit code says so.
         ++failed;
-        std::printf("%-4s %-10s %-22s | not measured: %s\n", p.id.c_str(), p.diagnosis.c_str(), p.procedure().c_str(), e.what());
+        std::printf("%-4s %-10s %-22s | not measured: %s\n", p.id.c_str(), p.diagnosis.c_str(), p.procedure().c_str(),
+                    e.what());
         std::fflush(stdout);
-        patients.push_back({{"id", p.id}, {"diagnosis", p.diagnosis}, {"procedure", p.procedure()}, {"error", e.what()}});
+        patients.push_back(
+            {{"id", p.id}, {"diagnosis", p.diagnosis}, {"procedure", p.procedure()}, {"error", e.what()}});
         continue;
       }
-      std::printf("%-4s %-10s %-22s | %7d %6d %8.3f %6.1f%% %6.1f%% | %7d %6d %8.3f %6.1f%% %6.1f%% | %7d %7.2f\n", p.id.c_str(),
-                  p.diagnosis.c_str(), p.procedure().c_str(), coarse.skinTriangles, coarse.tets, coarse.solveSeconds,
-                  100 * coarse.shareWithin(0), 100 * coarse.shareWithin(2), fine.skinTriangles, fine.tets, fine.solveSeconds,
-                  100 * fine.shareWithin(0), 100 * fine.shareWithin(2), ref.skinTriangles, ref.solveSeconds);
+      std::printf("%-4s %-10s %-22s | %7d %6d %8.3f %6.1f%% %6.1f%% | %7d %6d %8.3f %6.1f%% %6.1f%% | %7d %7.2f\n",
+                  p.id.c_str(), p.diagnosis.c_str(), p.procedure().c_str(), coarse.skinTriangles, coarse.tets,
+                  coarse.solveSeconds, 100 * coarse.shareWithin(0), 100 * coarse.shareWithin(2), fine.skinTriangles,
+                  fine.tets, fine.solveSeconds, 100 * fine.shareWithin(0), 100 * fine.shareWithin(2), ref.skinTriangles,
+                  ref.solveSeconds);
       if (!referenceNote.empty()) std::printf("  %s %s\n", p.id.c_str(), referenceNote.c_str());
       for (const CohortRun* run : {&coarse, &fine, &ref})
-        for (const std::string& w : run->warnings) std::printf("  %s %s: warning: %s\n", p.id.c_str(), run->config.label.c_str(), w.c_str());
+        for (const std::string& w : run->warnings)
+          std::printf("  %s %s: warning: %s\n", p.id.c_str(), run->config.label.c_str(), w.c_str());
       std::fflush(stdout);
       plot.points.push_back({coarse.solveSeconds, 100 * coarse.shareWithin(0), 0, p.id});
       plot.points.push_back({fine.solveSeconds, 100 * fine.shareWithin(0), 1, p.id});
@@ -180,18 +194,20 @@ int runCohortBench(const CohortBenchOptions& opt) {
           json j = cohortRunJson(s);
           j["patient"] = p.id;
           sweep.push_back(j);
-          std::printf("  sweep %-4s %6d skin tri %7d tets, tol x%-5g: solve %7.3f s, within 1 mm %5.1f%%, 3 mm %5.1f%%, "
-                      "mean |d| %.3f mm\n",
-                      p.id.c_str(), s.skinTriangles, s.tets, cfg.toleranceScale, s.solveSeconds, 100 * s.shareWithin(0),
-                      100 * s.shareWithin(2), s.region.meanAbs);
+          std::printf(
+              "  sweep %-4s %6d skin tri %7d tets, tol x%-5g: solve %7.3f s, within 1 mm %5.1f%%, 3 mm %5.1f%%, "
+              "mean |d| %.3f mm\n",
+              p.id.c_str(), s.skinTriangles, s.tets, cfg.toleranceScale, s.solveSeconds, 100 * s.shareWithin(0),
+              100 * s.shareWithin(2), s.region.meanAbs);
           std::fflush(stdout);
         }
       }
     }
 
     // Plausibility: soft-to-hard ratios of the fine prediction beside the published bands.
-    std::printf("\nsoft-to-hard movement ratios (fine prediction; forward movement of the soft landmark over the bone's; "
-                "adv/set: the bone moves forward/back):\n");
+    std::printf(
+        "\nsoft-to-hard movement ratios (fine prediction; forward movement of the soft landmark over the bone's; "
+        "adv/set: the bone moves forward/back):\n");
     std::printf("%-4s", "id");
     for (const RatioBand& b : ratioBands()) std::printf(" %26s", b.name.c_str());
     for (const bool forward : {true, false}) {
@@ -230,13 +246,14 @@ int runCohortBench(const CohortBenchOptions& opt) {
       }
       std::printf("\n");
     }
-    std::printf("%d of %d ratios outside their band (n/a: the bone moves less than 1 mm forward or back there; a ratio "
-                "without a flag: no band published for its direction)%s\nbands:\n", outside,
-                measuredRatios,
-                faceJson.is_null() ? ""
-                                   : "\nface: the ArtiSynth face, coarse, with contact: 5 mm Le Fort I advancement (upper lip, "
-                                     "nose), 5 mm mandibular setback (chin, lower lip); landmarks = most anterior midline "
-                                     "skin vertex in a height band");
+    std::printf(
+        "%d of %d ratios outside their band (n/a: the bone moves less than 1 mm forward or back there; a ratio "
+        "without a flag: no band published for its direction)%s\nbands:\n",
+        outside, measuredRatios,
+        faceJson.is_null() ? ""
+                           : "\nface: the ArtiSynth face, coarse, with contact: 5 mm Le Fort I advancement (upper lip, "
+                             "nose), 5 mm mandibular setback (chin, lower lip); landmarks = most anterior midline "
+                             "skin vertex in a height band");
     for (const RatioBand& b : ratioBands())
       for (const bool forward : {true, false})
         if (b.range(forward).published())
@@ -255,28 +272,34 @@ int runCohortBench(const CohortBenchOptions& opt) {
       ct.push_back(pj["coarse"]["solve_s"]);
       ft.push_back(pj["fine"]["solve_s"]);
     }
-    if (!ct.empty()) std::printf("\nmedians over %d measured patients: coarse solve %.3f s, within 1 mm %.1f%%, 3 mm %.1f%%; fine solve %.3f s, "
-                "within 1 mm %.1f%%, 3 mm %.1f%%\n",
-                static_cast<int>(ct.size()), median(ct), 100 * median(c1), 100 * median(c3), median(ft), 100 * median(f1), 100 * median(f3));
+    if (!ct.empty())
+      std::printf(
+          "\nmedians over %d measured patients: coarse solve %.3f s, within 1 mm %.1f%%, 3 mm %.1f%%; fine solve %.3f "
+          "s, "
+          "within 1 mm %.1f%%, 3 mm %.1f%%\n",
+          static_cast<int>(ct.size()), median(ct), 100 * median(c1), 100 * median(c3), median(ft), 100 * median(f1),
+          100 * median(f3));
 
-    json out = {{"schema_version", kCohortReportSchemaVersion},
-                {"reference",
-                 {{"skin_triangles", opt.referenceTriangles},
-                  {"tolerance_scale", opt.referenceToleranceScale},
-                  {"max_total_iterations", kCohortReferenceIterations},
-                  {"what", "discretisation reference: the same plan on a finer mesh solved to tight tolerances, not clinical truth"}}},
-                {"coarse_skin_triangles", opt.coarseTriangles},
-                {"fine_skin_triangles", opt.fineTriangles},
-                {"repeats", opt.repeats},
-                {"contact", !opt.noContact},
-                {"hardware_threads", std::thread::hardware_concurrency()},
-                {"measured_at", startedAt},
-                {"load_average", loadAtStart + " at the start, " + loadAverage() + " at the end"},
-                {"patients", patients},
-                {"sweep", sweep},
-                {"ratios_outside_band", outside},
-                {"patients_not_measured", failed},
-                {"real_face_ratios", faceJson}};
+    json out = {
+        {"schema_version", kCohortReportSchemaVersion},
+        {"reference",
+         {{"skin_triangles", opt.referenceTriangles},
+          {"tolerance_scale", opt.referenceToleranceScale},
+          {"max_total_iterations", kCohortReferenceIterations},
+          {"what",
+           "discretisation reference: the same plan on a finer mesh solved to tight tolerances, not clinical truth"}}},
+        {"coarse_skin_triangles", opt.coarseTriangles},
+        {"fine_skin_triangles", opt.fineTriangles},
+        {"repeats", opt.repeats},
+        {"contact", !opt.noContact},
+        {"hardware_threads", std::thread::hardware_concurrency()},
+        {"measured_at", startedAt},
+        {"load_average", loadAtStart + " at the start, " + loadAverage() + " at the end"},
+        {"patients", patients},
+        {"sweep", sweep},
+        {"ratios_outside_band", outside},
+        {"patients_not_measured", failed},
+        {"real_face_ratios", faceJson}};
     if (!opt.imagePath.empty() && !plot.points.empty()) {
       render::writeImage(render::scatterPlot(plot), opt.imagePath);
       std::printf("speed-versus-error plot written to %s\n", opt.imagePath.c_str());
@@ -284,7 +307,10 @@ int runCohortBench(const CohortBenchOptions& opt) {
     if (!opt.jsonPath.empty()) {
       json pts = json::array();
       for (const render::PlotPoint& p : plot.points)
-        pts.push_back({{"solve_s", p.x}, {"within_1mm_percent", p.y}, {"series", plot.series[p.series].name}, {"label", p.label}});
+        pts.push_back({{"solve_s", p.x},
+                       {"within_1mm_percent", p.y},
+                       {"series", plot.series[p.series].name},
+                       {"label", p.label}});
       out["plot"] = {{"x", "solve_s"}, {"y", "within_1mm_percent"}, {"points", pts}};
       std::ofstream f(opt.jsonPath);
       f << out.dump(2) << "\n";

@@ -27,11 +27,11 @@ struct BenchOptions {
 int runBench(const BenchOptions& options);
 
 struct CaseBenchOptions {
-  std::string casePath;   // empty: the phantom
+  std::string casePath;  // empty: the phantom
   int phantomVariant = 0;
   int repeats = 3;
   std::string jsonPath;
-  std::string planPath;   // JSON object {fragment: motion} replacing the case's plan; empty: keep it
+  std::string planPath;  // JSON object {fragment: motion} replacing the case's plan; empty: keep it
 };
 int runCaseBench(const CaseBenchOptions& options);
 
@@ -50,22 +50,22 @@ struct RenderCommandOptions {
   std::string view = "profile";  // a clinical view (render/ClinicalView.hpp)
   std::string out;               // .png or .jpg
   int width = 800, height = 600;
-  std::string colorMap = "none"; // none, displacement, difference (vs `reference`, else coarse vs fine)
-  std::string reference;         // surface file (OBJ, STL, PLY) the difference map measures against
+  std::string colorMap = "none";  // none, displacement, difference (vs `reference`, else coarse vs fine)
+  std::string reference;          // surface file (OBJ, STL, PLY) the difference map measures against
   Resolution resolution = Resolution::Coarse;
-  std::string cacheDir;          // built tissue cache; empty: none
+  std::string cacheDir;  // built tissue cache; empty: none
   bool bones = false;
-  double skinOpacity = 1.0;      // < 1 also shows the bones
+  double skinOpacity = 1.0;  // < 1 also shows the bones
   bool beforeAfter = false;
-  double scaleMm = 0;            // colour scale: displacement max or difference range; 0: default
+  double scaleMm = 0;  // colour scale: displacement max or difference range; 0: default
 };
 // Renders a case's predicted face for a plan into an image file. Exit codes as for solve: 0, 1 bad
 // input (also no EGL), 2 the solve did not converge (the image shows the last converged state).
 int runRender(const std::string& casePath, const RenderCommandOptions& options);
 
 struct RenderBenchOptions {
-  int repeats = 3;     // turns around the head; medians reported
-  int frames = 60;     // frames per turn
+  int repeats = 3;  // turns around the head; medians reported
+  int frames = 60;  // frames per turn
   int width = 800, height = 600;
   std::string jsonPath;
 };
@@ -74,18 +74,18 @@ struct RenderBenchOptions {
 int runRenderBench(const RenderBenchOptions& options);
 
 struct CohortBenchOptions {
-  int patients = 10;               // the first N of the cohort (engine/eval/Cohort)
+  int patients = 10;                    // the first N of the cohort (engine/eval/Cohort)
   std::vector<std::string> patientIds;  // instead: these patients (M1..M10)
-  int coarseTriangles = 3000;      // skin triangles (the case defaults)
+  int coarseTriangles = 3000;           // skin triangles (the case defaults)
   int fineTriangles = 20000;
-  int referenceTriangles = 60000;  // the discretisation reference: 3x fine
+  int referenceTriangles = 60000;         // the discretisation reference: 3x fine
   double referenceToleranceScale = 1e-2;  // of the default tolerances (1e-4 E h^2, 1e-4 h)
-  int sweepPatients = 1;           // patients also solved over more resolutions and tolerances (the plot)
-  int repeats = 3;                 // solves per run; medians reported
-  bool noContact = false;          // drop the case's lips-teeth contact (quick checks only)
-  std::string facePath;            // the ArtiSynth face folder: its ratios too; empty: not measured
+  int sweepPatients = 1;                  // patients also solved over more resolutions and tolerances (the plot)
+  int repeats = 3;                        // solves per run; medians reported
+  bool noContact = false;                 // drop the case's lips-teeth contact (quick checks only)
+  std::string facePath;                   // the ArtiSynth face folder: its ratios too; empty: not measured
   std::string jsonPath, imagePath;
-  std::string dataDir;             // cohort cases and tissue cache (kept); empty: a temporary folder
+  std::string dataDir;  // cohort cases and tissue cache (kept); empty: a temporary folder
 };
 // `orthosim bench cohort`: the paper's Table 4 on the synthetic cohort, the speed-versus-error
 // plot, the soft-to-hard movement ratios. 0 when every patient is measured, 1 on bad input, 2 when
@@ -96,15 +96,15 @@ int runCohortBench(const CohortBenchOptions& options);
 int runPhantom(int variant, const std::string& outDir);
 
 struct CompareOptions {
-  std::string predicted;  // surface file (.stl, .obj, .ply): the predicted skin
-  std::string reference;  // surface file: a finer solve, or a post-operative scan
-  std::string casePath;   // optional case: region of interest, landmarks (and its skin as the rest skin)
-  std::string restPath;   // optional rest skin with the predicted skin's triangles (a solve's skin_rest.obj)
-  std::string mapPath;    // optional coloured error map (.ply or .obj with vertex colours)
-  std::string imagePath;  // optional rendered error map (.png or .jpg, engine/render)
+  std::string predicted;         // surface file (.stl, .obj, .ply): the predicted skin
+  std::string reference;         // surface file: a finer solve, or a post-operative scan
+  std::string casePath;          // optional case: region of interest, landmarks (and its skin as the rest skin)
+  std::string restPath;          // optional rest skin with the predicted skin's triangles (a solve's skin_rest.obj)
+  std::string mapPath;           // optional coloured error map (.ply or .obj with vertex colours)
+  std::string imagePath;         // optional rendered error map (.png or .jpg, engine/render)
   std::string view = "frontal";  // its clinical view (render/ClinicalView.hpp)
-  std::string jsonPath;   // optional machine-readable copy of the figures
-  double rangeMm = 3.0;   // the map's colour range, +-mm
+  std::string jsonPath;          // optional machine-readable copy of the figures
+  double rangeMm = 3.0;          // the map's colour range, +-mm
 };
 // Prints the surface error (whole skin and face region) and the soft-tissue landmark errors;
 // 0 when measured, 1 on bad input (missing or unreadable file, empty mesh, bad case).
@@ -112,15 +112,15 @@ int runCompare(const CompareOptions& options);
 
 struct ServeOptions {
   std::string host = "127.0.0.1";
-  int port = 8080;     // 0: any free port; the chosen one is printed as "listening on http://HOST:PORT"
-  std::string webDir;  // the browser page folder
-  std::string dataDir;   // empty: $ORTHOSIM_DATA, else $XDG_DATA_HOME/orthosim, else ~/.local/share/orthosim
-  std::string casesDir;  // case folders besides the phantom (optional)
-  std::string token;     // empty: $ORTHOSIM_TOKEN if set, else the token file's
+  int port = 8080;        // 0: any free port; the chosen one is printed as "listening on http://HOST:PORT"
+  std::string webDir;     // the browser page folder
+  std::string dataDir;    // empty: $ORTHOSIM_DATA, else $XDG_DATA_HOME/orthosim, else ~/.local/share/orthosim
+  std::string casesDir;   // case folders besides the phantom (optional)
+  std::string token;      // empty: $ORTHOSIM_TOKEN if set, else the token file's
   std::string tokenFile;  // read, or made with a random token when absent (net/TokenFile.hpp)
   bool insecure = false;  // allow a bind off the loopback without a token
   std::vector<std::string> allowedOrigins, allowedHosts;
-  bool warmUp = true;    // build the phantom's coarse model at start
+  bool warmUp = true;  // build the phantom's coarse model at start
   int fineWorkers = 1;
   int maxSessions = 32;
   int unopenedTimeoutSeconds = 300;  // a session that opens no case in this time is closed

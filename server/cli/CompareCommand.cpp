@@ -34,8 +34,8 @@ std::string format(const char* fmt, double a, double b = 0, double c = 0, double
 
 void printSummary(const char* label, const ErrorSummary& s) {
   std::cout << label << format(": %.0f mm^2, %.0f vertices", s.area, s.vertices) << "\n"
-            << format("  signed distance: mean %.3f mm; |d|: mean %.3f, 95th percentile %.3f, max %.3f mm\n", s.meanSigned,
-                      s.meanAbs, s.p95Abs, s.maxAbs)
+            << format("  signed distance: mean %.3f mm; |d|: mean %.3f, 95th percentile %.3f, max %.3f mm\n",
+                      s.meanSigned, s.meanAbs, s.p95Abs, s.maxAbs)
             << "  area within:";
   for (size_t k = 0; k < s.thresholds.size(); ++k)
     std::cout << format("  %g mm %.1f%%", s.thresholds[k], 100.0 * s.shareWithin[k]);
@@ -49,7 +49,8 @@ void printLandmarks(const std::vector<LandmarkError>& lms) {
   for (const LandmarkError& e : lms) {
     std::printf("  %-18s", e.name.c_str());
     if (e.status == LandmarkStatus::Measured)
-      std::cout << format("%6.2f  %8.2f  %8.2f  %8.2f", e.error.norm(), e.errorInFrame.x(), e.errorInFrame.y(), e.errorInFrame.z())
+      std::cout << format("%6.2f  %8.2f  %8.2f  %8.2f", e.error.norm(), e.errorInFrame.x(), e.errorInFrame.y(),
+                          e.errorInFrame.z())
                 << (e.referenceCorresponds ? "" : "  (reference: closest point)") << "\n";
     else
       std::cout << (e.status == LandmarkStatus::Missing ? "missing: " : "not measured: ") << e.note << "\n";
@@ -68,7 +69,8 @@ Eigen::Matrix3Xf mapColours(const Comparison& c, double rangeMm) {
 
 // The predicted skin coloured by its signed error on the renderer's difference scale, with its
 // legend; grey outside the region of interest, as in the map file.
-void renderErrorImage(const SurfaceMesh& predicted, const Comparison& c, const AnatomicalFrame& frame, const CompareOptions& o) {
+void renderErrorImage(const SurfaceMesh& predicted, const Comparison& c, const AnatomicalFrame& frame,
+                      const CompareOptions& o) {
   render::Renderer renderer(800, 600);
   renderer.setSkin(predicted);
   renderer.setSkinValues(c.error.distance, c.inRegion);
@@ -102,7 +104,8 @@ int runCompare(const CompareOptions& o) {
     const Comparison c = compareSurfaces(in);
 
     std::cout << "predicted " << o.predicted << " (" << predicted.numVertices() << " vertices) against reference "
-              << o.reference << " (" << reference.numVertices() << " vertices); signed distance, negative inside the reference\n";
+              << o.reference << " (" << reference.numVertices()
+              << " vertices); signed distance, negative inside the reference\n";
     printSummary("whole surface", c.whole);
     std::cout << "region of interest: " << c.regionNote << "\n";
     if (c.hasRegion) printSummary("region of interest", c.region);
@@ -110,7 +113,8 @@ int runCompare(const CompareOptions& o) {
 
     if (!o.mapPath.empty()) {
       exportSurface(predicted, mapColours(c, o.rangeMm), o.mapPath);
-      std::cout << "error map written to " << o.mapPath << format(" (blue -%g mm, white 0, red +%g mm", o.rangeMm, o.rangeMm)
+      std::cout << "error map written to " << o.mapPath
+                << format(" (blue -%g mm, white 0, red +%g mm", o.rangeMm, o.rangeMm)
                 << (c.hasRegion ? "; grey outside the region of interest)" : ")") << "\n";
     }
     if (!o.imagePath.empty()) {

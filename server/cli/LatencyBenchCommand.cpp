@@ -101,13 +101,14 @@ int runLatencyBench(const LatencyBenchOptions& options) {
               << "solve time alone: median " << median(solve) << " s, p95 " << quantile(solve, 0.95)
               << " s  (target: median latency < 1 s)\n";
     if (!options.jsonPath.empty()) {
-      std::ofstream(options.jsonPath) << json{{"changes", options.changes},
-                                              {"latency_s", {{"median", median(roundTrip)}, {"p95", quantile(roundTrip, 0.95)}}},
-                                              {"solve_s", {{"median", median(solve)}, {"p95", quantile(solve, 0.95)}}},
-                                              {"frame_s", {{"median", median(toFrame)}, {"p95", quantile(toFrame, 0.95)}}},
-                                              {"round_trips_s", roundTrip}}
-                                             .dump(2)
-                                      << "\n";
+      std::ofstream(options.jsonPath)
+          << json{{"changes", options.changes},
+                  {"latency_s", {{"median", median(roundTrip)}, {"p95", quantile(roundTrip, 0.95)}}},
+                  {"solve_s", {{"median", median(solve)}, {"p95", quantile(solve, 0.95)}}},
+                  {"frame_s", {{"median", median(toFrame)}, {"p95", quantile(toFrame, 0.95)}}},
+                  {"round_trips_s", roundTrip}}
+                 .dump(2)
+          << "\n";
     }
   } catch (const std::exception& e) {
     std::cerr << "orthosim bench latency: " << e.what() << "\n";

@@ -11,7 +11,8 @@ int runPhantom(int variant, const std::string& outDir) {
   for (const PhantomVariant& v : phantomVariants()) known = known || v.index == variant;
   if (!known) {
     std::cerr << "orthosim: phantom: unknown variant " << variant << "; variants:\n";
-    for (const PhantomVariant& v : phantomVariants()) std::cerr << "  " << v.index << "  " << v.name << ": " << v.description << "\n";
+    for (const PhantomVariant& v : phantomVariants())
+      std::cerr << "  " << v.index << "  " << v.name << ": " << v.description << "\n";
     return 1;
   }
   const std::string path = writePhantomCase(variant, outDir);

@@ -1,14 +1,14 @@
 // `orthosim bench render`: frames per second while orbiting the phantom's predicted face, each
 // frame drawn off-screen, read back and JPEG-encoded (what a streaming server does per frame), at
 // coarse and fine resolution; plus the cost of a new deformed skin (positions and normals upload).
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "cli/Commands.hpp"
 #include "eval/Statistics.hpp"
@@ -81,8 +81,8 @@ double updateMs(render::Renderer& renderer, const CaseModel& model, const SimSta
 nlohmann::json benchRow(render::Renderer& renderer, const CaseModel& model, const SimState& state, const Row& row,
                         const RenderBenchOptions& opt) {
   const double update = updateMs(renderer, model, state);
-  const render::Camera camera = render::clinicalCamera(render::ClinicalView::Frontal, model.spec.frame, renderer.skinPositions(),
-                                                       renderer.viewAspect(row.options));
+  const render::Camera camera = render::clinicalCamera(render::ClinicalView::Frontal, model.spec.frame,
+                                                       renderer.skinPositions(), renderer.viewAspect(row.options));
   orbitOnce(renderer, camera, row.options, 4);  // warm-up: llvmpipe compiles shader variants on first use
   std::vector<double> fps, renderMs, encodeMs, kb, cpu;
   for (int r = 0; r < opt.repeats; ++r) {
@@ -90,13 +90,20 @@ nlohmann::json benchRow(render::Renderer& renderer, const CaseModel& model, cons
     fps.push_back(o.fps), renderMs.push_back(o.renderMs), encodeMs.push_back(o.encodeMs), kb.push_back(o.jpegKb);
     cpu.push_back(o.cpuMsPerFrame);
   }
-  std::printf("%-34s %8d %9d %7.1f %9.1f %10.1f %10.1f %8.1f %10.1f %8.1f\n", row.name.c_str(), model.tissue.skin.numTriangles(),
-              model.tissue.skin.numVertices(), median(fps), 1000.0 / median(fps), median(renderMs), median(encodeMs),
-              median(cpu), update, median(kb));
+  std::printf("%-34s %8d %9d %7.1f %9.1f %10.1f %10.1f %8.1f %10.1f %8.1f\n", row.name.c_str(),
+              model.tissue.skin.numTriangles(), model.tissue.skin.numVertices(), median(fps), 1000.0 / median(fps),
+              median(renderMs), median(encodeMs), median(cpu), update, median(kb));
   std::fflush(stdout);
-  return {{"row", row.name}, {"skin_triangles", model.tissue.skin.numTriangles()}, {"skin_vertices", model.tissue.skin.numVertices()},
-          {"fps_median", median(fps)}, {"fps", fps}, {"render_readback_ms_median", median(renderMs)},
-          {"jpeg_encode_ms_median", median(encodeMs)}, {"cpu_ms_per_frame_median", median(cpu)}, {"skin_update_ms", update}, {"jpeg_kb_mean", median(kb)}};
+  return {{"row", row.name},
+          {"skin_triangles", model.tissue.skin.numTriangles()},
+          {"skin_vertices", model.tissue.skin.numVertices()},
+          {"fps_median", median(fps)},
+          {"fps", fps},
+          {"render_readback_ms_median", median(renderMs)},
+          {"jpeg_encode_ms_median", median(encodeMs)},
+          {"cpu_ms_per_frame_median", median(cpu)},
+          {"skin_update_ms", update},
+          {"jpeg_kb_mean", median(kb)}};
 }
 
 // The streaming default (no multisampling), the same with 4x multisampling (smoother edges, about
@@ -119,20 +126,22 @@ int runRenderBench(const RenderBenchOptions& opt) {
   const CaseSpec spec = loadCaseFile(writePhantomCase(0, (work / "case").string()));
   const RgbImage texture = render::caseTexture(spec);
   render::Renderer plain(opt.width, opt.height, 0), smooth(opt.width, opt.height, 4);
-  std::printf("orthosim bench render: phantom '%s' with its plan solved, %dx%d, %d frames per turn around the head,\n"
-              "medians of %d turns; %s\n"
-              "fps: frames per second of render + read back + JPEG encode; render_ms: draw and read back;\n"
-              "cpu_ms: CPU time of all threads per frame (the machine's cost, whatever else runs);\n"
-              "update_ms: a new deformed skin (positions and normals upload, and the fragment poses)\n\n",
-              spec.name.c_str(), opt.width, opt.height, opt.frames, opt.repeats, plain.description().c_str());
-  std::printf("%-34s %8s %9s %7s %9s %10s %10s %8s %10s %8s\n", "row", "skin_tri", "skin_vert", "fps", "frame_ms", "render_ms",
-              "encode_ms", "cpu_ms", "update_ms", "jpeg_kb");
+  std::printf(
+      "orthosim bench render: phantom '%s' with its plan solved, %dx%d, %d frames per turn around the head,\n"
+      "medians of %d turns; %s\n"
+      "fps: frames per second of render + read back + JPEG encode; render_ms: draw and read back;\n"
+      "cpu_ms: CPU time of all threads per frame (the machine's cost, whatever else runs);\n"
+      "update_ms: a new deformed skin (positions and normals upload, and the fragment poses)\n\n",
+      spec.name.c_str(), opt.width, opt.height, opt.frames, opt.repeats, plain.description().c_str());
+  std::printf("%-34s %8s %9s %7s %9s %10s %10s %8s %10s %8s\n", "row", "skin_tri", "skin_vert", "fps", "frame_ms",
+              "render_ms", "encode_ms", "cpu_ms", "update_ms", "jpeg_kb");
   nlohmann::json rows = nlohmann::json::array();
   for (Resolution res : {Resolution::Coarse, Resolution::Fine}) {
     const CaseModel model = buildCaseModel(spec, res, {(work / "cache").string()});
     Model solver(model.scene);
     const SolveResult result = solveScene(solver);
-    if (!result.converged) throw std::runtime_error(std::string(resolutionName(res)) + " solve failed: " + result.error);
+    if (!result.converged)
+      throw std::runtime_error(std::string(resolutionName(res)) + " solve failed: " + result.error);
     render::setCase(plain, model, texture);
     render::setCase(smooth, model, texture);
     for (const Row& row : rowsFor(res)) {

@@ -26,7 +26,8 @@ SolvedCase solveCase(const CaseSpec& spec, Resolution resolution, const std::str
   for (const auto& w : s.model.warnings) std::cerr << "orthosim: warning: " << w << "\n";
   Model model(s.model.scene);
   s.result = solveScene(model);
-  if (!s.result.converged) std::cerr << "orthosim: " << resolutionName(resolution) << " solve: " << s.result.error << "\n";
+  if (!s.result.converged)
+    std::cerr << "orthosim: " << resolutionName(resolution) << " solve: " << s.result.error << "\n";
   return s;
 }
 

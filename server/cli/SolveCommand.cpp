@@ -35,15 +35,21 @@ nlohmann::json caseJson(const CaseModel& m) {
   const MeshQuality& q = m.tissue.quality;
   nlohmann::json fragments = nlohmann::json::array();
   for (size_t f = 0; f < m.coupling.fragments.size(); ++f)
-    fragments.push_back({{"name", m.coupling.fragments[f]}, {"bone", m.coupling.fragmentBone[f]},
+    fragments.push_back({{"name", m.coupling.fragments[f]},
+                         {"bone", m.coupling.fragmentBone[f]},
                          {"bonded_nodes", m.coupling.nodes[f].size()}});
   return {{"name", m.spec.name},
           {"resolution", resolutionName(m.resolution)},
           {"tissue",
-           {{"nodes", q.nodes}, {"tetrahedra", q.tets}, {"boundary_triangles", q.boundaryFaces},
-            {"min_dihedral_deg", q.minDihedralDeg}, {"max_radius_edge_ratio", q.maxRadiusEdgeRatio},
-            {"skin_vertices", m.tissue.skin.numVertices()}, {"from_cache", m.tissue.fromCache},
-            {"seconds", m.tissue.seconds}, {"report", m.tissue.report}}},
+           {{"nodes", q.nodes},
+            {"tetrahedra", q.tets},
+            {"boundary_triangles", q.boundaryFaces},
+            {"min_dihedral_deg", q.minDihedralDeg},
+            {"max_radius_edge_ratio", q.maxRadiusEdgeRatio},
+            {"skin_vertices", m.tissue.skin.numVertices()},
+            {"from_cache", m.tissue.fromCache},
+            {"seconds", m.tissue.seconds},
+            {"report", m.tissue.report}}},
           {"fragments", fragments},
           {"blended_nodes", m.coupling.blended.size()},
           {"warnings", m.warnings}};

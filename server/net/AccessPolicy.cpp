@@ -57,8 +57,7 @@ std::optional<std::string> queryValue(std::string_view query, std::string_view k
     const std::string_view raw = eq == std::string_view::npos ? std::string_view{} : pair.substr(eq + 1);
     std::string value;
     for (size_t i = 0; i < raw.size(); ++i) {
-      if (raw[i] == '%' && i + 2 < raw.size() && hexValue(raw[i + 1]) >= 0 &&
-          hexValue(raw[i + 2]) >= 0) {
+      if (raw[i] == '%' && i + 2 < raw.size() && hexValue(raw[i + 1]) >= 0 && hexValue(raw[i + 2]) >= 0) {
         value += static_cast<char>(hexValue(raw[i + 1]) * 16 + hexValue(raw[i + 2]));
         i += 2;
       } else {

@@ -2,9 +2,9 @@
 // Who may use the server. Host check: a browser tricked by DNS rebinding into sending a request
 // for evil.example to this server gets 403, however the server is bound: accepted are the
 // loopback names, IP literals (rebinding needs a DNS name), the bound address, this machine's
-// host name when bound to other than the loopback, and the names given with --allow-host. Token: when set, /api and /ws need it, as
-// "Authorization: Bearer TOKEN" or "?token=TOKEN" (a browser's WebSocket cannot send headers).
-// Origin: a WebSocket upgrade from a page of another origin is refused unless allowed.
+// host name when bound to other than the loopback, and the names given with --allow-host. Token: when set, /api and /ws
+// need it, as "Authorization: Bearer TOKEN" or "?token=TOKEN" (a browser's WebSocket cannot send headers). Origin: a
+// WebSocket upgrade from a page of another origin is refused unless allowed.
 #include <optional>
 #include <string>
 #include <vector>

@@ -34,7 +34,8 @@ HttpSession::HttpSession(boost::asio::ip::tcp::socket&& socket, std::shared_ptr<
 
 void HttpSession::start() {
   // The socket was accepted on this session's strand; run on it from the start.
-  boost::asio::dispatch(stream_.get_executor(), beast::bind_front_handler(&HttpSession::readRequest, shared_from_this()));
+  boost::asio::dispatch(stream_.get_executor(),
+                        beast::bind_front_handler(&HttpSession::readRequest, shared_from_this()));
 }
 
 void HttpSession::readRequest() {

@@ -35,7 +35,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   std::shared_ptr<const ConnectionContext> context_;
   const HttpLimits& limits_;
   std::optional<http::request_parser<http::string_body>> parser_;  // a fresh one per request
-  Response response_;  // kept alive until its write completes
+  Response response_;                                              // kept alive until its write completes
   std::size_t drained_ = 0;
 };
 

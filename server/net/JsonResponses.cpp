@@ -20,8 +20,8 @@ StringResponse jsonResponse(http::status status, const nlohmann::json& body, con
   return response;
 }
 
-StringResponse jsonError(http::status status, std::string_view code, const std::string& message,
-                         std::string_view path, const ReplyTo& to) {
+StringResponse jsonError(http::status status, std::string_view code, const std::string& message, std::string_view path,
+                         const ReplyTo& to) {
   return jsonResponse(status, {{"error", code}, {"message", message}, {"path", path}}, to);
 }
 

@@ -41,7 +41,8 @@ void Listener::start() { accept(); }
 
 void Listener::accept() {
   // Each connection gets its own strand: its handlers never run concurrently, connections do.
-  acceptor_.async_accept(boost::asio::make_strand(io_), beast::bind_front_handler(&Listener::onAccept, shared_from_this()));
+  acceptor_.async_accept(boost::asio::make_strand(io_),
+                         beast::bind_front_handler(&Listener::onAccept, shared_from_this()));
 }
 
 void Listener::onAccept(beast::error_code ec, tcp::socket socket) {
@@ -56,8 +57,8 @@ void Listener::backOff(const beast::error_code& ec) {
   ++failures_;
   const auto now = std::chrono::steady_clock::now();
   if (now - lastLog_ >= kLogInterval) {
-    std::cerr << "orthosim serve: accept failed " << failures_ << (failures_ == 1 ? " time" : " times")
-              << ": " << ec.message() << "; retrying\n";
+    std::cerr << "orthosim serve: accept failed " << failures_ << (failures_ == 1 ? " time" : " times") << ": "
+              << ec.message() << "; retrying\n";
     failures_ = 0;
     lastLog_ = now;
   }

@@ -31,8 +31,7 @@ Response Router::handle(const Request& request) const {
   const ReplyTo to = replyTo(request);
   const std::string_view rawTarget(request.target().data(), request.target().size());
   const std::optional<RequestTarget> target = parseRequestTarget(rawTarget);
-  if (!target)
-    return jsonError(http::status::bad_request, "bad_target", "malformed request target", rawTarget, to);
+  if (!target) return jsonError(http::status::bad_request, "bad_target", "malformed request target", rawTarget, to);
   if (std::optional<Refusal> r = policy_.checkHost(request)) return refusal(*r, target->path, to);
 
   // Both the API and the page are read-only over HTTP: state changes go over the WebSocket.
@@ -40,13 +39,14 @@ Response Router::handle(const Request& request) const {
   if (isApiPath(target->path)) {
     if (std::optional<Refusal> r = policy_.checkToken(request, *target)) return refusal(*r, target->path, to);
     std::optional<Response> reply = api_.get(target->path, to);
-    if (!reply) return jsonError(http::status::not_found, "not_found", "no API route " + target->path, target->path, to);
+    if (!reply)
+      return jsonError(http::status::not_found, "not_found", "no API route " + target->path, target->path, to);
     if (!readOnly) return methodNotAllowed(request, target->path, to);
     return std::move(*reply);
   }
   if (target->path == "/ws")
-    return jsonError(http::status::upgrade_required, "upgrade_required", "/ws is the WebSocket API: open it as a WebSocket",
-                     target->path, to);
+    return jsonError(http::status::upgrade_required, "upgrade_required",
+                     "/ws is the WebSocket API: open it as a WebSocket", target->path, to);
   if (!readOnly) return methodNotAllowed(request, target->path, to);
   return serveStaticFile(web_, target->path, to);
 }
@@ -57,7 +57,8 @@ std::optional<StringResponse> Router::refuseUpgrade(const Request& request) cons
   const std::optional<RequestTarget> target = parseRequestTarget(rawTarget);
   if (!target) return jsonError(http::status::bad_request, "bad_target", "malformed request target", rawTarget, to);
   if (target->path != "/ws")
-    return jsonError(http::status::not_found, "not_found", "WebSocket upgrades are served on /ws only", target->path, to);
+    return jsonError(http::status::not_found, "not_found", "WebSocket upgrades are served on /ws only", target->path,
+                     to);
   for (auto check : {&AccessPolicy::checkHost, &AccessPolicy::checkOrigin})
     if (std::optional<Refusal> r = (policy_.*check)(request)) return refusal(*r, target->path, to);
   if (std::optional<Refusal> r = policy_.checkToken(request, *target)) return refusal(*r, target->path, to);

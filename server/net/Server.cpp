@@ -1,10 +1,10 @@
 #include "net/Server.hpp"
 
+#include <unistd.h>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/signal_set.hpp>
-#include <unistd.h>
 
 #include <algorithm>
 #include <csignal>
@@ -55,8 +55,8 @@ Server::Server(const ServerOptions& options) : impl_(std::make_unique<Impl>(opti
   const tcp::endpoint endpoint = resolveEndpoint(impl_->io, options.host, options.port);
   if (std::optional<std::string> why = bindRefusal(endpoint.address(), options.access.token, options.insecure))
     throw std::runtime_error(*why);
-  const std::string bound = endpoint.address().is_v6() ? "[" + endpoint.address().to_string() + "]"
-                                                       : endpoint.address().to_string();
+  const std::string bound =
+      endpoint.address().is_v6() ? "[" + endpoint.address().to_string() + "]" : endpoint.address().to_string();
   auto context = std::make_shared<ConnectionContext>();
   context->router =
       std::make_shared<const Router>(WebRoot(options.webDir), ApiRoutes(impl_->planning),

@@ -20,10 +20,10 @@ struct ServerOptions {
   int networkThreads = 2;
   HttpLimits limits;
   WebSocketLimits webSocket;
-  AccessOptions access;             // token, allowed origins and hosts
-  bool insecure = false;            // serve off the loopback without a token (the operator typed --insecure)
+  AccessOptions access;              // token, allowed origins and hosts
+  bool insecure = false;             // serve off the loopback without a token (the operator typed --insecure)
   server::PlanningOptions planning;  // data folder, cases, workers
-  std::string warmUpCase;           // built in the background at start (empty: none)
+  std::string warmUpCase;            // built in the background at start (empty: none)
 };
 
 class Server {

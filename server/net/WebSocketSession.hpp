@@ -5,9 +5,9 @@
 // and a client that stops reading its replies is disconnected.
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/steady_timer.hpp>
-#include <chrono>
 #include <boost/beast/core.hpp>
 #include <boost/beast/websocket.hpp>
+#include <chrono>
 #include <deque>
 #include <memory>
 #include <string>
@@ -19,12 +19,12 @@
 namespace orthosim::net {
 
 struct WebSocketLimits {
-  std::size_t messageBytes = 64 * 1024;        // larger client messages are refused (and skipped)
-  std::size_t hardMessageBytes = 16u << 20;    // larger ones close the connection (1009)
-  std::size_t outboxBytes = 64u << 20;         // replies a client may leave unread
-  std::chrono::seconds handshakeTimeout{10};   // to finish the upgrade (and the closing handshake)
-  std::chrono::seconds idleTimeout{120};       // silence, pings included, after which a client is gone
-  std::chrono::seconds unopenedTimeout{300};   // to open a case; a session that does not is closed
+  std::size_t messageBytes = 64 * 1024;       // larger client messages are refused (and skipped)
+  std::size_t hardMessageBytes = 16u << 20;   // larger ones close the connection (1009)
+  std::size_t outboxBytes = 64u << 20;        // replies a client may leave unread
+  std::chrono::seconds handshakeTimeout{10};  // to finish the upgrade (and the closing handshake)
+  std::chrono::seconds idleTimeout{120};      // silence, pings included, after which a client is gone
+  std::chrono::seconds unopenedTimeout{300};  // to open a case; a session that does not is closed
 };
 
 class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {

@@ -15,7 +15,7 @@ namespace orthosim::server {
 
 struct ExportedFile {
   std::string id;
-  std::string fileName;     // suggested download name, e.g. "phantom-0-preview.stl"
+  std::string fileName;  // suggested download name, e.g. "phantom-0-preview.stl"
   std::string contentType;
   std::string bytes;
 };
@@ -36,7 +36,7 @@ class ExportStore {
     std::deque<ExportedFile> files;  // oldest first
     std::size_t bytes = 0;
   };
-  void dropOldest(Owned& owned);  // with mutex_ held
+  void dropOldest(Owned& owned);                   // with mutex_ held
   void evictOverBytes(const std::string& keepId);  // with mutex_ held
 
   std::size_t maxFiles_, maxBytes_;

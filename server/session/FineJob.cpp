@@ -39,7 +39,9 @@ std::optional<FineSolve> runFineJob(long long job, CaseLibrary& cases, const std
   json figures = solveFiguresJson(*fine, SkinFigureProbe(*fine), result, fine->spec.frame);
   figures["time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!result.converged) {
-    report({{"type", "job_failed"}, {"job", job}, {"message", "the fine solve did not converge: " + result.error},
+    report({{"type", "job_failed"},
+            {"job", job},
+            {"message", "the fine solve did not converge: " + result.error},
             {"figures", std::move(figures)}});
     return std::nullopt;
   }

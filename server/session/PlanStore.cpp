@@ -53,8 +53,9 @@ void replaceFile(const fs::path& target, const std::string& text) {
 void checkName(const std::string& what, const std::string& name, const std::string& path) {
   if (!isIdentifier(name))
     throw ProtocolError("bad_name",
-                        what + " '" + name + "' is not a valid name: use 1-64 letters, digits, '_' or '-', starting "
-                                             "with a letter or digit",
+                        what + " '" + name +
+                            "' is not a valid name: use 1-64 letters, digits, '_' or '-', starting "
+                            "with a letter or digit",
                         path);
 }
 

@@ -3,8 +3,8 @@
 // bounded queue of fine jobs, saved plans and exported files, and the count of open sessions.
 // Owned by the server; outlives every session.
 #include <atomic>
-#include <chrono>
 #include <boost/asio/thread_pool.hpp>
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>

@@ -6,8 +6,8 @@
 #include <chrono>
 
 #include "eval/SkinFigures.hpp"
-#include "scene/Osteotomy.hpp"
 #include "render/SurfaceDifference.hpp"
+#include "scene/Osteotomy.hpp"
 #include "session/FineJob.hpp"
 #include "session/SavedPlan.hpp"
 #include "session/SkinExport.hpp"
@@ -85,7 +85,8 @@ namespace {
 std::vector<FragmentInfo> movableFragments(const CaseModel& m) {
   std::vector<FragmentInfo> out;
   for (const FragmentSpec& f : m.scene.fragments) {
-    const auto bone = std::find_if(m.spec.bones.begin(), m.spec.bones.end(), [&](const CaseBone& b) { return b.name == f.name; });
+    const auto bone =
+        std::find_if(m.spec.bones.begin(), m.spec.bones.end(), [&](const CaseBone& b) { return b.name == f.name; });
     if (f.free || (bone != m.spec.bones.end() && bone->fixed)) continue;  // what is left of the skull stays
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (int n : f.nodes) c += m.scene.mesh.rest.col(n);
@@ -185,14 +186,19 @@ void PlanningSession::handle(const std::string& text) {
 
 void PlanningSession::dispatch(const std::string& type, MessageReader& r, const json& id) {
   using Handler = void (PlanningSession::*)(MessageReader&, const json&);
-  static const std::map<std::string, Handler> handlers = {
-      {"list_cases", &PlanningSession::listCases}, {"open", &PlanningSession::open},
-      {"describe", &PlanningSession::describe},    {"set_poses", &PlanningSession::setPoses},
-      {"reset", &PlanningSession::reset},          {"preview", &PlanningSession::preview},
-      {"confirm", &PlanningSession::confirm},      {"cancel", &PlanningSession::cancel},
-      {"list_plans", &PlanningSession::listPlans}, {"save_plan", &PlanningSession::savePlan},
-      {"load_plan", &PlanningSession::loadPlan},   {"export", &PlanningSession::exportSkin},
-      {"view", &PlanningSession::view}};
+  static const std::map<std::string, Handler> handlers = {{"list_cases", &PlanningSession::listCases},
+                                                          {"open", &PlanningSession::open},
+                                                          {"describe", &PlanningSession::describe},
+                                                          {"set_poses", &PlanningSession::setPoses},
+                                                          {"reset", &PlanningSession::reset},
+                                                          {"preview", &PlanningSession::preview},
+                                                          {"confirm", &PlanningSession::confirm},
+                                                          {"cancel", &PlanningSession::cancel},
+                                                          {"list_plans", &PlanningSession::listPlans},
+                                                          {"save_plan", &PlanningSession::savePlan},
+                                                          {"load_plan", &PlanningSession::loadPlan},
+                                                          {"export", &PlanningSession::exportSkin},
+                                                          {"view", &PlanningSession::view}};
   auto it = handlers.find(type);
   if (it == handlers.end()) {
     std::string known;
@@ -322,10 +328,10 @@ Poses PlanningSession::readPoses(MessageReader r, const OpenCase& c) const {
     if (!c.fragment(name)) {
       std::string known;
       for (const FragmentInfo& f : c.fragments) known += (known.empty() ? "" : ", ") + f.name;
-      throw ProtocolError("unknown_fragment",
-                          r.pointer(name) + ": no movable fragment '" + name + "' in case '" + c.id +
-                              "'; movable fragments: " + known,
-                          r.pointer(name));
+      throw ProtocolError(
+          "unknown_fragment",
+          r.pointer(name) + ": no movable fragment '" + name + "' in case '" + c.id + "'; movable fragments: " + known,
+          r.pointer(name));
     }
     poses[name] = readPose(r.object(name), service_.limits());
   }
@@ -402,9 +408,12 @@ void PlanningSession::schedulePreview(const json& id) {
         try {
           self->runPreview(c, seq, poses, id, cancel);
         } catch (const std::exception& e) {  // the last good preview stays as it was
-          self->reply({{"type", "preview_failed"}, {"preview", seq}, {"case", c->id},
-                       {"message", std::string("the coarse solve failed: ") + e.what() + "; the last good preview is kept"}},
-                      id);
+          self->reply(
+              {{"type", "preview_failed"},
+               {"preview", seq},
+               {"case", c->id},
+               {"message", std::string("the coarse solve failed: ") + e.what() + "; the last good preview is kept"}},
+              id);
         }
       },
       true);
@@ -469,7 +478,11 @@ void PlanningSession::runPreview(const std::shared_ptr<OpenCase>& c, long long s
     c->previewX = std::make_shared<const Eigen::Matrix3Xd>(result.state.x);
     c->previewPoses = poses;
   }
-  reply({{"type", "preview"}, {"preview", seq}, {"case", c->id}, {"poses", std::move(posesOut)}, {"figures", std::move(figures)}},
+  reply({{"type", "preview"},
+         {"preview", seq},
+         {"case", c->id},
+         {"poses", std::move(posesOut)},
+         {"figures", std::move(figures)}},
         id);
 }
 
@@ -486,9 +499,10 @@ void PlanningSession::confirm(MessageReader& r, const json& id) {
   auto self = shared_from_this();
   const std::optional<long long> job = service_.fineJobs().submit(
       id_, [self, c, poses](long long job, const std::atomic<bool>& cancel) { self->runFine(job, c, poses, cancel); },
-      [self](long long job) { self->reply({{"type", "job_cancelled"}, {"job", job}, {"phase", "queued"}}, nullptr); });
-  if (!job)
-    throw ProtocolError("busy", "the fine-job queue is full; try again when a job has finished");
+      [self](long long job) {
+        self->reply({{"type", "job_cancelled"}, {"job", job}, {"phase", "queued"}}, nullptr);
+      });
+  if (!job) throw ProtocolError("busy", "the fine-job queue is full; try again when a job has finished");
   reply({{"type", "job_queued"},
          {"job", *job},
          {"case", c->id},
@@ -504,7 +518,8 @@ void PlanningSession::runFine(long long job, const std::shared_ptr<OpenCase>& c,
     std::optional<FineSolve> solved = runFineJob(job, service_.cases(), c->id, c->plan(poses), cancel, report);
     if (solved) publishFine(job, c, std::move(poses), std::move(*solved));
   } catch (const std::exception& e) {
-    reply({{"type", "job_failed"}, {"job", job}, {"message", std::string("the fine job failed: ") + e.what()}}, nullptr);
+    reply({{"type", "job_failed"}, {"job", job}, {"message", std::string("the fine job failed: ") + e.what()}},
+          nullptr);
   }
 }
 
@@ -600,7 +615,8 @@ void PlanningSession::exportSkin(MessageReader& r, const json& id) {
     }
   }
   if (!x)
-    throw ProtocolError("no_result", "/result: there is no " + which + " result for case '" + c->id + "' yet", "/result");
+    throw ProtocolError("no_result", "/result: there is no " + which + " result for case '" + c->id + "' yet",
+                        "/result");
   if (model->tissue.skin.numVertices() == 0)
     throw ProtocolError("no_skin", "case '" + c->id + "' has no skin surface to export");
   auto self = shared_from_this();
@@ -610,9 +626,8 @@ void PlanningSession::exportSkin(MessageReader& r, const json& id) {
           SkinExport file = skinExportFile(*model, *x, caseId, which, format);
           const std::string fileName = file.fileName;
           const std::size_t size = file.bytes.size();
-          const std::string exportId =
-              self->service_.exports().add(self->id_, std::move(file.fileName), std::move(file.contentType),
-                                           std::move(file.bytes));
+          const std::string exportId = self->service_.exports().add(self->id_, std::move(file.fileName),
+                                                                    std::move(file.contentType), std::move(file.bytes));
           self->reply({{"type", "exported"},
                        {"format", format},
                        {"result", which},

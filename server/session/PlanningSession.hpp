@@ -30,8 +30,8 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   ~PlanningSession();
 
   const std::string& id() const { return id_; }
-  void start();                           // sends "welcome"
-  void handle(const std::string& text);   // one client message
+  void start();                          // sends "welcome"
+  void handle(const std::string& text);  // one client message
   void refuseOversized(std::size_t bytes, std::size_t limit);
   void refuseBinary();
   // The connection is gone: cancel previews and this session's fine jobs. Idempotent.

@@ -20,12 +20,14 @@ json savedPlanJson(const std::string& caseId, const std::string& name, const jso
   json world = json::object();
   for (const auto& [fragment, motion] : plan) {
     const Eigen::Vector3d deg = motion.rotation * 180.0 / kPi;
-    world[fragment] = {{"translation_mm", vec(motion.translation)}, {"rotation_deg", vec(deg)}, {"center_mm", vec(motion.center)}};
+    world[fragment] = {
+        {"translation_mm", vec(motion.translation)}, {"rotation_deg", vec(deg)}, {"center_mm", vec(motion.center)}};
   }
   return {{"format", kPlanFormat}, {"case", caseId}, {"name", name}, {"poses", poses}, {"plan", world}};
 }
 
-std::map<std::string, AnatomicalPose> readSavedPlan(const json& plan, const std::string& name, const PoseReader& readPoses) {
+std::map<std::string, AnatomicalPose> readSavedPlan(const json& plan, const std::string& name,
+                                                    const PoseReader& readPoses) {
   try {
     MessageReader p(plan, "");
     if (p.string("format") != kPlanFormat) p.fail("bad_plan", "unknown plan format", "format");

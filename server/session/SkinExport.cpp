@@ -16,7 +16,7 @@ std::string skinExportFormat(std::string format) {
 }
 
 SkinExport skinExportFile(const CaseModel& model, const Eigen::Matrix3Xd& x, const std::string& caseId,
-                      const std::string& result, const std::string& format) {
+                          const std::string& result, const std::string& format) {
   SkinExport e;
   e.bytes = exportSurfaceBytes(model.deformedSkin(x), format);
   e.contentType = format == "stl" ? "model/stl" : format == "obj" ? "model/obj" : "application/x-ply";

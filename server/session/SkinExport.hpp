@@ -19,6 +19,6 @@ struct SkinExport {
 
 // The model's skin at nodes `x`; `result` ("preview" or "fine") names the file.
 SkinExport skinExportFile(const CaseModel& model, const Eigen::Matrix3Xd& x, const std::string& caseId,
-                      const std::string& result, const std::string& format);
+                          const std::string& result, const std::string& format);
 
 }  // namespace orthosim::server

@@ -10,7 +10,9 @@ using nlohmann::json;
 namespace {
 
 json anatomical(const Eigen::Vector3d& d, const AnatomicalFrame& f) {
-  return {{"anterior_mm", d.dot(f.anterior)}, {"superior_mm", d.dot(f.superior)}, {"right_mm", d.dot(f.right)},
+  return {{"anterior_mm", d.dot(f.anterior)},
+          {"superior_mm", d.dot(f.superior)},
+          {"right_mm", d.dot(f.right)},
           {"total_mm", d.norm()}};
 }
 
@@ -44,7 +46,8 @@ json skinDifferenceJson(const CaseModel& coarse, const Eigen::Matrix3Xd& coarseX
       (coarse.skinEmbedding.apply(coarseX) - fine.skinEmbedding.apply(fineX)).colwise().norm().transpose();
   std::vector<double> sorted(d.data(), d.data() + d.size());
   std::sort(sorted.begin(), sorted.end());
-  const double p95 = sorted[std::min(sorted.size() - 1, static_cast<size_t>(0.95 * static_cast<double>(sorted.size())))];
+  const double p95 =
+      sorted[std::min(sorted.size() - 1, static_cast<size_t>(0.95 * static_cast<double>(sorted.size())))];
   return {{"max_mm", d.maxCoeff()}, {"mean_mm", d.mean()}, {"p95_mm", p95}};
 }
 

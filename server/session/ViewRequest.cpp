@@ -25,7 +25,8 @@ Eigen::Vector2d pair(MessageReader& r, const std::string& key, double limit, con
     r.fail("bad_value", "must be an array of two numbers (" + unit + ")", key);
   const Eigen::Vector2d p(v[0].get<double>(), v[1].get<double>());
   if (!p.allFinite() || p.cwiseAbs().maxCoeff() > limit)
-    r.fail("out_of_range", "each must be finite and within +-" + std::to_string(static_cast<int>(limit)) + " " + unit, key);
+    r.fail("out_of_range", "each must be finite and within +-" + std::to_string(static_cast<int>(limit)) + " " + unit,
+           key);
   return p;
 }
 
@@ -61,7 +62,8 @@ ViewRequest readViewRequest(MessageReader& r) {
   if (r.has("before_after")) v.beforeAfter = r.boolean("before_after", false);
   if (r.has("size")) {
     const Eigen::Vector2d s = pair(r, "size", 4096, "pixels");
-    if (s.x() < 64 || s.y() < 64 || s.x() > 1920 || s.y() > 1200 || s.x() != std::floor(s.x()) || s.y() != std::floor(s.y()))
+    if (s.x() < 64 || s.y() < 64 || s.x() > 1920 || s.y() > 1200 || s.x() != std::floor(s.x()) ||
+        s.y() != std::floor(s.y()))
       r.fail("out_of_range", "width must be a whole 64..1920 and height 64..1200 pixels", "size");
     v.size = Eigen::Vector2i(static_cast<int>(s.x()), static_cast<int>(s.y()));
   }

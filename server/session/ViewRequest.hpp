@@ -10,9 +10,9 @@
 namespace orthosim::server {
 
 struct ViewRequest {
-  std::optional<std::string> preset;   // a clinical view name: resets the camera
-  Eigen::Vector2d orbitDeg = Eigen::Vector2d::Zero();  // azimuth, elevation
-  double zoom = 1;                     // > 1 closer
+  std::optional<std::string> preset;                    // a clinical view name: resets the camera
+  Eigen::Vector2d orbitDeg = Eigen::Vector2d::Zero();   // azimuth, elevation
+  double zoom = 1;                                      // > 1 closer
   Eigen::Vector2d panPixels = Eigen::Vector2d::Zero();  // right, down (as the mouse moves)
   std::optional<std::string> colorMap;
   std::optional<bool> bones;

@@ -6,6 +6,7 @@
 // coarse mesh here is the product's and fine and reference are smaller than the product's.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,7 +14,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-#include <unistd.h>
 
 #include "TestData.hpp"
 #include "eval/CohortJson.hpp"
@@ -35,8 +35,8 @@ class CohortBench : public ::testing::Test {
   int run(const std::string& args) {
     // One BLAS thread: timings are not checked here, and on a loaded machine two spinning OpenBLAS
     // threads slow the solves several-fold.
-    const std::string cmd = "OPENBLAS_NUM_THREADS=1 " + std::string(ORTHOSIM_CLI) + " bench cohort " + args + " > " + (dir_ / "out.txt").string() +
-                            " 2> " + (dir_ / "err.txt").string();
+    const std::string cmd = "OPENBLAS_NUM_THREADS=1 " + std::string(ORTHOSIM_CLI) + " bench cohort " + args + " > " +
+                            (dir_ / "out.txt").string() + " 2> " + (dir_ / "err.txt").string();
     return WEXITSTATUS(std::system(cmd.c_str()));
   }
   std::string read(const char* name) {
@@ -53,7 +53,8 @@ bool finite(const nlohmann::json& v) { return v.is_number() && std::isfinite(v.g
 TEST_F(CohortBench, TwoPatientsTablePlotAndRatios) {
   const std::string json = (dir_ / "cohort.json").string(), png = (dir_ / "plot.png").string();
   ASSERT_EQ(run("--patients 2 --no-contact --coarse-triangles 3000 --fine-triangles 6000 --reference-triangles 12000 "
-                "--sweep-patients 0 --repeats 1 --json " + json + " --image " + png),
+                "--sweep-patients 0 --repeats 1 --json " +
+                json + " --image " + png),
             0)
       << read("out.txt") << read("err.txt");
   const std::string out = read("out.txt");
@@ -79,7 +80,8 @@ TEST_F(CohortBench, TwoPatientsTablePlotAndRatios) {
   };
   EXPECT_EQ(keys(j), keys(committed));
   EXPECT_EQ(keys(j["patients"][0]), keys(committed["patients"][0]));
-  for (const char* run : {"coarse", "fine"}) EXPECT_EQ(keys(j["patients"][0][run]), keys(committed["patients"][0][run])) << run;
+  for (const char* run : {"coarse", "fine"})
+    EXPECT_EQ(keys(j["patients"][0][run]), keys(committed["patients"][0][run])) << run;
   EXPECT_EQ(keys(j["patients"][0]["ratios_fine"][0]), keys(committed["patients"][0]["ratios_fine"][0]));
   for (const auto& p : j["patients"]) {
     SCOPED_TRACE(p["id"].get<std::string>());
@@ -103,7 +105,8 @@ TEST_F(CohortBench, TwoPatientsTablePlotAndRatios) {
     // shares that are both near 100%).
     EXPECT_GE(p["fine"]["face_region"]["share_within"][0].get<double>() + 0.005,
               p["coarse"]["face_region"]["share_within"][0].get<double>());
-    EXPECT_LE(p["fine"]["face_region"]["mean_abs_mm"].get<double>(), p["coarse"]["face_region"]["mean_abs_mm"].get<double>() + 0.01);
+    EXPECT_LE(p["fine"]["face_region"]["mean_abs_mm"].get<double>(),
+              p["coarse"]["face_region"]["mean_abs_mm"].get<double>() + 0.01);
     // Ratios: four, each either a finite value with a flag that matches its direction's band, or
     // n/a with a note.
     ASSERT_EQ(p["ratios_fine"].size(), 4u);

@@ -38,22 +38,24 @@ class CompareCommand : public ::testing::Test {
   }
   // Runs `orthosim compare ARGS`; stdout and stderr go to out.txt and err.txt. Returns the exit code.
   static int compare(const std::string& args) {
-    const std::string cmd = std::string(ORTHOSIM_CLI) + " compare " + args + " > " + path("out.txt") + " 2> " + path("err.txt");
+    const std::string cmd =
+        std::string(ORTHOSIM_CLI) + " compare " + args + " > " + path("out.txt") + " 2> " + path("err.txt");
     return WEXITSTATUS(std::system(cmd.c_str()));
   }
 };
 
 TEST_F(CompareCommand, SkinAgainstItselfIsZeroEverywhere) {
   const std::string skin = path("case/skin.obj");
-  ASSERT_EQ(compare(skin + " " + skin + " --case " + path("case/case.json") + " --map " + path("self.ply") + " --json " +
-                    path("self.json")),
+  ASSERT_EQ(compare(skin + " " + skin + " --case " + path("case/case.json") + " --map " + path("self.ply") +
+                    " --json " + path("self.json")),
             0)
       << read("err.txt");
   const nlohmann::json j = nlohmann::json::parse(read("self.json"));
   for (const char* part : {"whole_surface", "region_of_interest"}) {
     ASSERT_TRUE(j[part].is_object()) << part << ": " << j["region_note"];
     EXPECT_LT(j[part]["max_abs_mm"].get<double>(), 1e-9) << part;
-    for (const auto& [t, share] : j[part]["share_within"].items()) EXPECT_EQ(share.get<double>(), 1.0) << part << " " << t;
+    for (const auto& [t, share] : j[part]["share_within"].items())
+      EXPECT_EQ(share.get<double>(), 1.0) << part << " " << t;
   }
   // The region leaves out the neck and the back of the head.
   EXPECT_LT(j["region_of_interest"]["area_mm2"].get<double>(), 0.8 * j["whole_surface"]["area_mm2"].get<double>());
@@ -75,8 +77,8 @@ TEST_F(CompareCommand, SkinMovedForwardShowsTheMoveAtEveryLandmark) {
   SurfaceMesh skin = importSurface(path("case/skin.obj"));
   skin.vertices.row(0).array() -= 2.0;  // 2 mm anterior (+x is posterior)
   exportSurface(skin, path("forward.obj"));
-  ASSERT_EQ(compare(path("forward.obj") + " " + path("case/skin.obj") + " --case " + path("case/case.json") + " --json " +
-                    path("forward.json") + " --image " + path("forward.png")),
+  ASSERT_EQ(compare(path("forward.obj") + " " + path("case/skin.obj") + " --case " + path("case/case.json") +
+                    " --json " + path("forward.json") + " --image " + path("forward.png")),
             0)
       << read("err.txt");
   const nlohmann::json j = nlohmann::json::parse(read("forward.json"));
@@ -90,7 +92,8 @@ TEST_F(CompareCommand, SkinMovedForwardShowsTheMoveAtEveryLandmark) {
   }
   // The frontal image: the face, now in front of the reference, is red (outside) at the centre;
   // the neck and the back of the head are grey (tests/render: Renderer.DifferenceMapGreys...).
-  EXPECT_NE(read("out.txt").find("grey outside the region of interest) written to " + path("forward.png")), std::string::npos)
+  EXPECT_NE(read("out.txt").find("grey outside the region of interest) written to " + path("forward.png")),
+            std::string::npos)
       << read("out.txt");
   const RgbImage image = render::readImage(path("forward.png"));
   ASSERT_EQ(image.width, 800);
@@ -118,7 +121,7 @@ TEST_F(CompareCommand, BadInputsAreNamed) {
   EXPECT_NE(read("err.txt").find("reference surface: " + path("garbage.stl")), std::string::npos) << read("err.txt");
   EXPECT_EQ(compare(skin + " " + path("missing.obj")), 1);  // no such file
   EXPECT_NE(read("err.txt").find("missing.obj"), std::string::npos) << read("err.txt");
-  EXPECT_EQ(compare(skin + " " + skin + " --rest " + skin), 1);  // --rest needs --case
+  EXPECT_EQ(compare(skin + " " + skin + " --rest " + skin), 1);            // --rest needs --case
   EXPECT_EQ(compare(skin + " " + skin + " --map " + path("map.stl")), 1);  // STL has no vertex colours
   EXPECT_NE(read("err.txt").find("map.stl"), std::string::npos) << read("err.txt");
 }

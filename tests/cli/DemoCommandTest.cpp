@@ -28,15 +28,15 @@ TEST(DemoCommand, WritesThePhantomCaseAndSolvesItsPlan) {
   const nlohmann::json r = nlohmann::json::parse(in);
   EXPECT_TRUE(r["converged"].get<bool>());
   EXPECT_GT(r["max_displacement_mm"].get<double>(), 4.9);  // the maxilla moves 5 mm
-  EXPECT_LT(r["max_displacement_mm"].get<double>(), 8.0);   // tissue squeezed ahead of it may move a little more
+  EXPECT_LT(r["max_displacement_mm"].get<double>(), 8.0);  // tissue squeezed ahead of it may move a little more
   EXPECT_GT(r["min_det_f"].get<double>(), 0.0);
 
   // The solved skin against its rest (skin_rest.obj, same triangles): every soft-tissue landmark is
   // placed, and the upper lip follows the 5 mm maxillary advancement most of the way.
-  const std::string compare = std::string(ORTHOSIM_CLI) + " compare " + (dir / "result" / "skin.obj").string() + " " +
-                              (dir / "result" / "skin_rest.obj").string() + " --case " + (dir / "case" / "case.json").string() +
-                              " --rest " + (dir / "result" / "skin_rest.obj").string() + " --json " +
-                              (dir / "compare.json").string() + " > /dev/null";
+  const std::string compare =
+      std::string(ORTHOSIM_CLI) + " compare " + (dir / "result" / "skin.obj").string() + " " +
+      (dir / "result" / "skin_rest.obj").string() + " --case " + (dir / "case" / "case.json").string() + " --rest " +
+      (dir / "result" / "skin_rest.obj").string() + " --json " + (dir / "compare.json").string() + " > /dev/null";
   ASSERT_EQ(std::system(compare.c_str()), 0);
   std::ifstream cmp(dir / "compare.json");
   const nlohmann::json c = nlohmann::json::parse(cmp);

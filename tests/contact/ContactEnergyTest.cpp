@@ -5,8 +5,8 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "contact/ContactEnergy.hpp"
 #include "Square.hpp"
+#include "contact/ContactEnergy.hpp"
 #include "mesh/SurfacePrimitives.hpp"
 
 namespace orthosim {

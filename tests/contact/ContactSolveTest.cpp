@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "mesh/BoxMesh.hpp"
 #include "Square.hpp"
+#include "mesh/BoxMesh.hpp"
 #include "mesh/SurfacePrimitives.hpp"
 #include "solver/PlanSolver.hpp"
 
@@ -46,9 +46,12 @@ TEST(ContactSolve, PlateSqueezingABlockReachesTheUniaxialForce) {
     const Eigen::Vector3d X = s.mesh.rest.col(i);
     if (X.z() == L) top.push_back(i);
     if (X.z() != 0) continue;
-    if (X.x() == 0 && X.y() == 0) pin.nodes.push_back(i);
-    else if (X.x() == L && X.y() == 0) noSpin.nodes.push_back(i);
-    else rollers.nodes.push_back(i);
+    if (X.x() == 0 && X.y() == 0)
+      pin.nodes.push_back(i);
+    else if (X.x() == L && X.y() == 0)
+      noSpin.nodes.push_back(i);
+    else
+      rollers.nodes.push_back(i);
   }
   s.fixed = {rollers, pin, noSpin};
   s.fragments = {{"plate", {}, false}};
@@ -101,7 +104,7 @@ TEST(ContactSolve, BlockDraggedAlongAPlaneSlidesWithoutResistance) {
   const Eigen::Matrix3Xd moved = b.colwise() - Eigen::Vector3d(10, 0, 0);
   std::cout << "contact force pressed " << pressed.transpose() << " N, dragged " << dragged.transpose()
             << " N; largest node difference " << (moved - a).cwiseAbs().maxCoeff() << " mm\n";
-  EXPECT_GT(dragged.z(), 0.1);  // it does press on the floor
+  EXPECT_GT(dragged.z(), 0.1);             // it does press on the floor
   EXPECT_LT(std::abs(dragged.x()), 1e-9);  // and feels no drag
   EXPECT_NEAR(dragged.z(), pressed.z(), 1e-6 * pressed.z());
   EXPECT_LT((moved - a).cwiseAbs().maxCoeff(), 1e-4);
@@ -129,9 +132,12 @@ double sphereForce(int cells, double& hertz, double& penetration) {
   std::vector<int> top;
   for (int i = 0; i < s.mesh.numNodes(); ++i) {
     const Eigen::Vector3d X = s.mesh.rest.col(i);
-    if (X.z() == 0) base.nodes.push_back(i);
-    else if (X.x() == 0) symX.nodes.push_back(i);
-    else if (X.y() == 0) symY.nodes.push_back(i);
+    if (X.z() == 0)
+      base.nodes.push_back(i);
+    else if (X.x() == 0)
+      symX.nodes.push_back(i);
+    else if (X.y() == 0)
+      symY.nodes.push_back(i);
     if (X.x() == 0 && X.y() == 0 && X.z() > 0) symY.nodes.push_back(i);  // on the axis: both rollers
     if (X.z() == D && std::hypot(X.x(), X.y()) < 3 * std::sqrt(R * d)) top.push_back(i);
   }
@@ -143,7 +149,8 @@ double sphereForce(int cells, double& hertz, double& penetration) {
   const SolveResult r = solveScene(model);
   EXPECT_TRUE(r.converged) << r.error;
   penetration = 0;
-  for (int i : top) penetration = std::max(penetration, R - (r.state.x.col(i) - Eigen::Vector3d(0, 0, D + R - d)).norm());
+  for (int i : top)
+    penetration = std::max(penetration, R - (r.state.x.col(i) - Eigen::Vector3d(0, 0, D + R - d)).norm());
   const double E = s.youngsModulus, nu = s.poissonRatio;
   hertz = 4.0 / 3.0 * E / (1 - nu * nu) * std::sqrt(R) * std::pow(d - penetration, 1.5);
   return -4 * contactForce(model, r.state).z();  // four quarters

@@ -10,8 +10,10 @@ inline SurfaceMesh square(double h, double half, bool up) {
   s.vertices.resize(3, 4);
   s.vertices << -half, half, half, -half, -half, -half, half, half, h, h, h, h;
   s.triangles.resize(3, 2);
-  if (up) s.triangles << 0, 0, 1, 2, 2, 3;
-  else s.triangles << 0, 0, 2, 3, 1, 2;
+  if (up)
+    s.triangles << 0, 0, 1, 2, 2, 3;
+  else
+    s.triangles << 0, 0, 2, 3, 1, 2;
   return s;
 }
 

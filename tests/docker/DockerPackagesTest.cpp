@@ -60,9 +60,11 @@ TEST(DockerPackages, CatchesAPackageAddedToTheSetupScriptOnly) {
 }
 
 TEST(DockerPackages, CatchesAPackageAddedToTheDockerfileOnly) {
-  const std::string mapped = replaced(dockerfile(), "#   pkg cmake", "#   pkg libexample-drift-dev -> libexample-drift1\n#   pkg cmake");
+  const std::string mapped =
+      replaced(dockerfile(), "#   pkg cmake", "#   pkg libexample-drift-dev -> libexample-drift1\n#   pkg cmake");
   const std::string docker = replaced(mapped, "ARG RUNTIME_PACKAGES=\"", "ARG RUNTIME_PACKAGES=\"libexample-drift1 ");
-  EXPECT_TRUE(mentions(drift(setupScript(), docker), "libexample-drift-dev: in docker/Dockerfile's package map but not"));
+  EXPECT_TRUE(
+      mentions(drift(setupScript(), docker), "libexample-drift-dev: in docker/Dockerfile's package map but not"));
   // A runtime package that no map line asks for, and one a map line asks for but is not installed.
   const std::string extra = replaced(dockerfile(), "ARG RUNTIME_PACKAGES=\"", "ARG RUNTIME_PACKAGES=\"curl ");
   EXPECT_TRUE(mentions(drift(setupScript(), extra), "curl: in RUNTIME_PACKAGES but no package"));
@@ -71,7 +73,8 @@ TEST(DockerPackages, CatchesAPackageAddedToTheDockerfileOnly) {
 }
 
 TEST(DockerPackages, CatchesAnInstallOutsideTheLists) {
-  const std::string docker = replaced(dockerfile(), "COPY . .", "RUN apt-get install -y libexample-drift-dev\nCOPY . .");
+  const std::string docker =
+      replaced(dockerfile(), "COPY . .", "RUN apt-get install -y libexample-drift-dev\nCOPY . .");
   EXPECT_TRUE(mentions(drift(setupScript(), docker), "apt-get install outside the two lists"));
   const std::string noScript = replaced(dockerfile(), "RUN bash scripts/setup-deps.sh", "RUN true");
   EXPECT_TRUE(mentions(drift(setupScript(), noScript), "does not run bash scripts/setup-deps.sh"));

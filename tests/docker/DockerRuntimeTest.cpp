@@ -32,8 +32,10 @@ std::string output(const std::string& command) {
 std::string owner(const std::filesystem::path& path) {
   std::vector<std::string> candidates{path.string(), std::filesystem::weakly_canonical(path).string()};
   for (const std::string& c : std::vector<std::string>(candidates)) {
-    if (c.rfind("/usr/", 0) == 0) candidates.push_back(c.substr(4));
-    else candidates.push_back("/usr" + c);
+    if (c.rfind("/usr/", 0) == 0)
+      candidates.push_back(c.substr(4));
+    else
+      candidates.push_back("/usr" + c);
   }
   for (const std::string& c : candidates) {
     const std::string line = output("dpkg-query -S '" + c + "' 2>/dev/null");

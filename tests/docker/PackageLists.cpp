@@ -103,8 +103,7 @@ std::vector<std::string> packageDrift(const std::vector<std::string>& setup, con
 
   if (!d.buildRunsSetupScript) problems.push_back("the build stage does not run bash scripts/setup-deps.sh");
   if (!d.runtimeInstallsList) problems.push_back("the runtime stage does not apt-get install $RUNTIME_PACKAGES");
-  for (const std::string& ins : d.otherInstalls)
-    problems.push_back("an apt-get install outside the two lists: " + ins);
+  for (const std::string& ins : d.otherInstalls) problems.push_back("an apt-get install outside the two lists: " + ins);
   return problems;
 }
 

@@ -32,7 +32,8 @@ TEST(CohortReportSchema, ThePageReadsTheBenchsCurrentFormat) {
   const std::string page = readSource("web/report.js");
   std::smatch m;
   ASSERT_TRUE(std::regex_search(page, m, std::regex(R"(const REPORT_SCHEMA_VERSION = (\d+);)"))) << "web/report.js";
-  EXPECT_EQ(std::stoi(m[1]), kCohortReportSchemaVersion) << "web/report.js reads another report format than the bench writes";
+  EXPECT_EQ(std::stoi(m[1]), kCohortReportSchemaVersion)
+      << "web/report.js reads another report format than the bench writes";
 }
 
 }  // namespace

@@ -2,11 +2,11 @@
 // its cases open like any user's case, with every planned fragment made by its cuts.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <unistd.h>
 
 #include "eval/Cohort.hpp"
 #include "math/Angles.hpp"
@@ -71,7 +71,8 @@ TEST(Cohort, CasesLoadAndEveryPlannedFragmentIsMadeByTheCuts) {
       EXPECT_NE(std::find(frags.begin(), frags.end(), m.fragment), frags.end()) << p.id << ": " << m.fragment;
       const FragmentMotion& f = spec.plan.at(m.fragment);
       EXPECT_NEAR(f.translation.x(), m.translation[0], 1e-12);
-      EXPECT_NEAR(f.rotation.norm() * 180 / kPi, std::hypot(m.rotationDeg[0], m.rotationDeg[1], m.rotationDeg[2]), 1e-9);
+      EXPECT_NEAR(f.rotation.norm() * 180 / kPi, std::hypot(m.rotationDeg[0], m.rotationDeg[1], m.rotationDeg[2]),
+                  1e-9);
       if (m.centerLandmarks.empty()) continue;
       Eigen::Vector3d c = Eigen::Vector3d::Zero();
       for (const std::string& name : m.centerLandmarks) c += spec.landmarks.at(name) / double(m.centerLandmarks.size());

@@ -80,8 +80,8 @@ TEST(FaceRegion, OnThePhantomHoldsTheFaceNotTheNeckOrTheBackOfTheHead) {
   const Eigen::AlignedBox3d all = p.skin.boundingBox();
   EXPECT_GT(inside / area.sum(), 0.4);
   EXPECT_LT(inside / area.sum(), 0.8);
-  EXPECT_GT(box.min().z(), all.min().z() + 20);  // the neck's lowest 20 mm are out
-  EXPECT_LT(box.max().x(), all.max().x() - 20);  // so are the back 20 mm of the head
+  EXPECT_GT(box.min().z(), all.min().z() + 20);     // the neck's lowest 20 mm are out
+  EXPECT_LT(box.max().x(), all.max().x() - 20);     // so are the back 20 mm of the head
   EXPECT_NEAR(box.min().x(), all.min().x(), 1e-9);  // the nose tip is in
 }
 

@@ -25,8 +25,8 @@ TEST(LandmarkError, AKnownDisplacementComesBackInTheCaseFrame) {
   const Eigen::Vector3d shift(-1.0, 0.5, 2.0);  // 1 mm anterior, 0.5 right, 2 superior (phantom frame)
   const SurfaceMesh predicted = moved(rest, shift);
   const Landmarks lm{{"pronasale", {-50, 0, 0}}, {"soft_menton", Eigen::Vector3d(-30, 10, -30).normalized() * 50.3}};
-  const std::vector<LandmarkError> out = landmarkErrors({"pronasale", "soft_menton", "stomion"}, lm, AnatomicalFrame{},
-                                                        {rest, predicted, rest});
+  const std::vector<LandmarkError> out =
+      landmarkErrors({"pronasale", "soft_menton", "stomion"}, lm, AnatomicalFrame{}, {rest, predicted, rest});
   ASSERT_EQ(out.size(), 3u);
   for (const char* name : {"pronasale", "soft_menton"}) {
     const LandmarkError& e = find(out, name);

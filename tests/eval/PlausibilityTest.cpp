@@ -12,7 +12,9 @@ namespace {
 const Eigen::Vector3d kAnterior(-1, 0, 0);  // the phantom's frame: +x posterior
 
 RatioRange range(double lo, double hi) { return {lo, hi, "test"}; }
-RatioBand band(RatioRange advancement, RatioRange setback = {}) { return {"test", "soft", "hard", advancement, setback}; }
+RatioBand band(RatioRange advancement, RatioRange setback = {}) {
+  return {"test", "soft", "hard", advancement, setback};
+}
 
 TEST(Plausibility, FlagsValuesOutsideTheBandAndKeepsTheEdgesInside) {
   const RatioRange b = range(0.4, 0.75);

@@ -35,7 +35,9 @@ class SolveJsonPaths : public ::testing::Test {
     caseModel.scene = model->scene();  // no skin: the skin figures are zeros
   }
   nlohmann::json file() const { return resultToJson(*model, result); }
-  nlohmann::json figures() const { return server::solveFiguresJson(caseModel, SkinFigureProbe{}, result, AnatomicalFrame{}); }
+  nlohmann::json figures() const {
+    return server::solveFiguresJson(caseModel, SkinFigureProbe{}, result, AnatomicalFrame{});
+  }
 
   std::unique_ptr<Model> model;
   SolveResult result;
@@ -52,7 +54,8 @@ TEST_F(SolveJsonPaths, ANonFiniteResidualIsNullInBoth) {
     EXPECT_TRUE(a.at("residual_n").is_null()) << a.dump();
     EXPECT_TRUE(b.at("residual_n").is_null()) << b.dump();
     EXPECT_NE(b.dump().find("\"residual_n\":null"), std::string::npos);
-    for (const char* key : {"converged", "error", "load_fraction", "residual_n"}) EXPECT_EQ(a.at(key), b.at(key)) << key;
+    for (const char* key : {"converged", "error", "load_fraction", "residual_n"})
+      EXPECT_EQ(a.at(key), b.at(key)) << key;
   }
 }
 

@@ -47,9 +47,8 @@ int allIterations(const SolveResult& r) {
 
 void report(const std::string& name, const SolveResult& r) {
   std::cout << "hard case " << name << ": " << (r.converged ? "converged" : "refused") << ", " << allIterations(r)
-            << " iterations, " << r.timings.total << " s, load fraction " << r.loadFraction << " ("
-            << r.substeps.size() << " substeps, " << r.timings.factorizations << " factorisations, min det F "
-            << r.minDetF << ")";
+            << " iterations, " << r.timings.total << " s, load fraction " << r.loadFraction << " (" << r.substeps.size()
+            << " substeps, " << r.timings.factorizations << " factorisations, min det F " << r.minDetF << ")";
   if (!r.converged) std::cout << ": " << r.error;
   for (const std::string& w : r.warnings) std::cout << "\n  warning: " << w;
   std::cout << std::endl;
@@ -120,9 +119,7 @@ HardRun solveFromRest(Model& model, const std::map<std::string, FragmentMotion>&
   return run;
 }
 
-double maxDistance(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b) {
-  return (a - b).colwise().norm().maxCoeff();
-}
+double maxDistance(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b) { return (a - b).colwise().norm().maxCoeff(); }
 
 // ---------------------------------------------------------------------------------------------
 // Block scenes
@@ -167,8 +164,8 @@ TEST(HardBlock, PlanForwardThenBackReturnsToRest) {
     ASSERT_TRUE(r.converged) << r.error;
     const double d = maxDistance(r.state.x, s.mesh.rest);
     std::cout << "forward then back" << tol << ": largest distance to rest " << d << " mm (step tolerance "
-              << model.stepTolerance() << " mm; forward moved up to " << maxDistance(forward.result.state.x, s.mesh.rest)
-              << " mm)\n";
+              << model.stepTolerance() << " mm; forward moved up to "
+              << maxDistance(forward.result.state.x, s.mesh.rest) << " mm)\n";
     EXPECT_LT(d, tight ? 1e-6 : model.stepTolerance());
   }
 }
@@ -205,7 +202,7 @@ TetMesh withSlivers(TetMesh mesh, int* flattened) {
   const double zMax = original.row(2).maxCoeff();
   for (int i = 0; i < mesh.numNodes(); i += 3) {  // every 3rd node: spread over the block
     const Eigen::Vector3d p = original.col(i);
-    if (p.z() == 0.0 || p.z() == zMax) continue;  // keep the bonded bottom and the top face flat
+    if (p.z() == 0.0 || p.z() == zMax) continue;   // keep the bonded bottom and the top face flat
     for (size_t j = 0; j < star[i].size(); ++j) {  // the first tet of the star that can be flattened
       const int e = star[i][(i / 3 + j) % star[i].size()];
       Eigen::Vector3d q[3];
@@ -307,7 +304,8 @@ class HardPhantom : public ::testing::Test {
 TEST_F(HardPhantom, IdentityPlanIsTheExactRest) {
   FragmentMotion still;
   still.center = landmark("upper_incisor_tip");
-  const HardRun run = solve("identity plan (phantom, contact)", coarse().scene, {{"maxilla", still}, {"mandible", still}});
+  const HardRun run =
+      solve("identity plan (phantom, contact)", coarse().scene, {{"maxilla", still}, {"mandible", still}});
   ASSERT_TRUE(run.result.converged) << run.result.error;
   EXPECT_EQ(allIterations(run.result), 0);
   // Zero iterations, but not bit for bit: a blended node is placed at sum_f w_f X, and weights
@@ -370,7 +368,7 @@ TEST_F(HardPhantom, FragmentsMovedIntoEachOther) {
 // 5 mm each (10 mm of overlap) with the lips-teeth contact.
 TEST_F(HardPhantom, FragmentsMovedIntoEachOtherWithContact) {
   const HardRun run = solve("fragments moved into each other, 5 mm each (phantom, contact)", coarse().scene,
-                           intoEachOther(spec().frame, 5.0));
+                            intoEachOther(spec().frame, 5.0));
   expectConvergedWithin(run.result, 16);  // today 8 iterations in 1 substep
 }
 

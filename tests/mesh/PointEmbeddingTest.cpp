@@ -44,9 +44,7 @@ Eigen::Matrix3Xd affine(const Eigen::Matrix3Xd& x) {
   return (A * x).colwise() + Eigen::Vector3d(5, -3, 2);
 }
 
-double maxDistance(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b) {
-  return (a - b).colwise().norm().maxCoeff();
-}
+double maxDistance(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b) { return (a - b).colwise().norm().maxCoeff(); }
 
 TEST(PointEmbedding, InsidePointsAreExactAtRestAndUnderAnAffineMap) {
   const TetMesh box = makeBoxMesh({kSize, {6, 4, 2}});
@@ -150,8 +148,8 @@ TEST(PointEmbedding, CoarseAndFineAgreeToTheirMeshSizeUnderABending) {
     y.row(2) += k * x.row(0).cwiseAbs2();
     return y;
   };
-  const TetMesh coarse = makeBoxMesh({kSize, {6, 4, 2}});   // hx = 10 mm
-  const TetMesh fine = makeBoxMesh({kSize, {24, 16, 8}});   // hx = 2.5 mm
+  const TetMesh coarse = makeBoxMesh({kSize, {6, 4, 2}});  // hx = 10 mm
+  const TetMesh fine = makeBoxMesh({kSize, {24, 16, 8}});  // hx = 2.5 mm
   const Eigen::Matrix3Xd inside = randomPoints(3000, Eigen::Vector3d::Zero(), kSize, 5);
   const Eigen::Matrix3Xd c = embedPoints(coarse, inside).apply(bend(coarse.rest));
   const Eigen::Matrix3Xd f = embedPoints(fine, inside).apply(bend(fine.rest));
@@ -207,7 +205,8 @@ TEST(PointEmbedding, RealFaceSurfaceVerticesEmbedOntoTheirNodes) {
   EXPECT_EQ(emb.numOutside(), 0);
   EXPECT_LT(maxDistance(emb.apply(face.rest), p), 1e-9);
   // Under random node positions each vertex still lands on its own node.
-  const Eigen::Matrix3Xd x = face.rest + randomPoints(face.numNodes(), -Eigen::Vector3d::Ones(), Eigen::Vector3d::Ones(), 8);
+  const Eigen::Matrix3Xd x =
+      face.rest + randomPoints(face.numNodes(), -Eigen::Vector3d::Ones(), Eigen::Vector3d::Ones(), 8);
   const Eigen::Matrix3Xd y = emb.apply(x);
   double worst = 0;
   for (size_t i = 0; i < node.size(); ++i) worst = std::max(worst, (y.col(i) - x.col(node[i])).norm());

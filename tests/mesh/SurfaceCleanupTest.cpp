@@ -3,13 +3,13 @@
 // closed, the labels on their surfaces, and the uv of the skin.
 #include <gtest/gtest.h>
 
+#include "TissueScene.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceCleanup.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfacePrimitives.hpp"
 #include "mesh/SurfaceSimplify.hpp"
 #include "mesh/TissueBoolean.hpp"
-#include "TissueScene.hpp"
 
 namespace orthosim {
 namespace {

@@ -13,11 +13,12 @@ namespace orthosim {
 namespace {
 
 TEST(SurfaceExport, VertexColoursAsPlyAndObj) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("orthosim_map_" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("orthosim_map_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const SurfaceMesh s = makeIcosphere(10, 1);
   Eigen::Matrix3Xf colours = Eigen::Matrix3Xf::Zero(3, s.numVertices());
-  colours(0, 0) = 1;  // vertex 0 red, the others black
+  colours(0, 0) = 1;                                      // vertex 0 red, the others black
   exportSurface(s, colours, (dir / "map.ply").string());  // ASCII even so: assimp's binary PLY garbles colours
   exportSurface(s, colours, (dir / "map.obj").string());
   std::ifstream ply(dir / "map.ply");

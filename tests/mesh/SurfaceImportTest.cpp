@@ -6,8 +6,8 @@
 
 #include <atomic>
 #include <cctype>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -20,8 +20,8 @@
 #include "math/Angles.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceImport.hpp"
-#include "mesh/SurfacePrimitives.hpp"
 #include "mesh/SurfaceMesh.hpp"
+#include "mesh/SurfacePrimitives.hpp"
 
 namespace orthosim {
 namespace {
@@ -31,8 +31,9 @@ namespace fs = std::filesystem;
 // Turns every triangle of a shape that is star-shaped around `centre` to face away from it.
 void orientOutward(SurfaceMesh& m, const Eigen::Vector3d& centre) {
   for (int t = 0; t < m.numTriangles(); ++t) {
-    const Eigen::Vector3d mid = (m.vertices.col(m.triangles(0, t)) + m.vertices.col(m.triangles(1, t)) +
-                                 m.vertices.col(m.triangles(2, t))) / 3.0;
+    const Eigen::Vector3d mid =
+        (m.vertices.col(m.triangles(0, t)) + m.vertices.col(m.triangles(1, t)) + m.vertices.col(m.triangles(2, t))) /
+        3.0;
     if (m.areaVector(t).dot(mid - centre) < 0) std::swap(m.triangles(1, t), m.triangles(2, t));
   }
 }
@@ -274,12 +275,14 @@ TEST_F(SurfaceImportTest, TruncatedBinaryStl) {
   const std::string cut = write("cut.stl", bytes.substr(0, bytes.size() - 30));
   std::string e = errorOf([&] { importSurface(cut); });
   EXPECT_TRUE(contains(e, cut)) << e;
-  EXPECT_TRUE(contains(e, "truncated binary STL: the header announces 320 triangles (16084 bytes), the file has 16054 bytes"))
+  EXPECT_TRUE(
+      contains(e, "truncated binary STL: the header announces 320 triangles (16084 bytes), the file has 16054 bytes"))
       << e;
 
   const std::string header = write("header.stl", bytes.substr(0, 60));
   e = errorOf([&] { importSurface(header); });
-  EXPECT_TRUE(contains(e, header) && contains(e, "truncated binary STL: 60 bytes, shorter than the 84-byte header")) << e;
+  EXPECT_TRUE(contains(e, header) && contains(e, "truncated binary STL: 60 bytes, shorter than the 84-byte header"))
+      << e;
 }
 
 TEST_F(SurfaceImportTest, TruncatedAsciiStl) {
@@ -298,16 +301,18 @@ TEST_F(SurfaceImportTest, TruncatedAsciiStl) {
 }
 
 TEST_F(SurfaceImportTest, LinePrimitives) {
-  const std::string obj = write("lines.obj", "v 0 0 0\nv 40 0 0\nv 0 40 0\nv 0 0 40\n"
-                                             "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nl 1 2\n");
+  const std::string obj = write("lines.obj",
+                                "v 0 0 0\nv 40 0 0\nv 0 40 0\nv 0 0 40\n"
+                                "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nl 1 2\n");
   const std::string e = errorOf([&] { importSurface(obj); });
   EXPECT_TRUE(contains(e, obj + ": 1 line or point primitive: expected a triangle surface")) << e;
 }
 
 TEST_F(SurfaceImportTest, NonManifoldEdge) {
   // Three triangles on one edge, open elsewhere: refused even where open surfaces are allowed.
-  const std::string file = write("fan.obj", "v 0 0 0\nv 0 0 40\nv 40 0 20\nv -30 30 20\nv -30 -30 20\n"
-                                            "f 1 2 3\nf 2 1 4\nf 2 1 5\n");
+  const std::string file = write("fan.obj",
+                                 "v 0 0 0\nv 0 0 40\nv 40 0 20\nv -30 30 20\nv -30 -30 20\n"
+                                 "f 1 2 3\nf 2 1 4\nf 2 1 5\n");
   std::string e = errorOf([&] {
     SurfaceMesh m = importSurface(file);
     checkSurface(m, file, SurfaceRequirement::OpenAllowed);
@@ -385,7 +390,8 @@ TEST_F(SurfaceImportTest, NaNCoordinates) {
   std::string e = errorOf([&] { importSurface(stl); });
   EXPECT_TRUE(contains(e, stl) && contains(e, "non-finite coordinates (NaN or infinite) in 1 triangle, e.g. (")) << e;
 
-  const std::string obj = write("nan.obj", "v 0 0 0\nv 40 0 0\nv 0 nan 0\nv 0 0 inf\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n");
+  const std::string obj =
+      write("nan.obj", "v 0 0 0\nv 40 0 0\nv 0 nan 0\nv 0 0 inf\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n");
   e = errorOf([&] { importSurface(obj); });
   EXPECT_TRUE(contains(e, obj) && contains(e, "non-finite coordinates (NaN or infinite) in 4 triangles")) << e;
 

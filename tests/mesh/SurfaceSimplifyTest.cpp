@@ -50,8 +50,8 @@ TEST(SurfaceSimplify, HitsTheSkinTargetAndStaysASoundClosedSurface) {
     for (int label = 1; label <= 3; ++label) EXPECT_GT(countLabel(s, label), 0);
     EXPECT_GT(report.maxErrorMm, 0);
     std::cout << "target " << target << ": skin " << report.skinTriangles << ", solids " << report.solidTriangles
-              << ", patches " << report.patches << ", rounds " << report.rounds << ", frozen "
-              << report.frozenTriangles << ", error " << report.maxErrorMm << " mm\n";
+              << ", patches " << report.patches << ", rounds " << report.rounds << ", frozen " << report.frozenTriangles
+              << ", error " << report.maxErrorMm << " mm\n";
   }
 }
 
@@ -78,8 +78,9 @@ TEST(SurfaceSimplify, KeptVerticesAreInputVerticesOnTheirSurfacesWithTheirUv) {
   for (int t = 0; t < s.surface.numTriangles(); ++t)
     if (s.label[t] == 0)
       for (int c = 0; c < 3; ++c)
-        worst = std::max(worst, (s.cornerUv.col(3 * t + c) -
-                                 test::affineUv(s.surface.vertices.col(s.surface.triangles(c, t)))).norm());
+        worst = std::max(
+            worst,
+            (s.cornerUv.col(3 * t + c) - test::affineUv(s.surface.vertices.col(s.surface.triangles(c, t)))).norm());
   EXPECT_LT(worst, 1e-12);
 }
 
@@ -94,12 +95,15 @@ TEST(SurfaceSimplify, RefineRegionsGetDenser) {
   int in = 0, out = 0;
   for (int t = 0; t < s.surface.numTriangles(); ++t) {
     if (s.label[t] != 0) continue;
-    const Eigen::Vector3d c = (s.surface.vertices.col(s.surface.triangles(0, t)) +
-                               s.surface.vertices.col(s.surface.triangles(1, t)) +
-                               s.surface.vertices.col(s.surface.triangles(2, t))) / 3;
+    const Eigen::Vector3d c =
+        (s.surface.vertices.col(s.surface.triangles(0, t)) + s.surface.vertices.col(s.surface.triangles(1, t)) +
+         s.surface.vertices.col(s.surface.triangles(2, t))) /
+        3;
     const double a = 0.5 * s.surface.areaVector(t).norm();
-    if ((c - lips.center).norm() <= lips.radius) areaIn += a, ++in;
-    else areaOut += a, ++out;
+    if ((c - lips.center).norm() <= lips.radius)
+      areaIn += a, ++in;
+    else
+      areaOut += a, ++out;
   }
   ASSERT_GT(in, 0);
   EXPECT_GE((in / areaIn) / (out / areaOut), 2.0) << in << " in, " << out << " out";

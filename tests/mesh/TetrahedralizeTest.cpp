@@ -22,8 +22,8 @@
 #include "mesh/BoundaryFaces.hpp"
 #include "mesh/BoxMesh.hpp"
 #include "mesh/MeshQuality.hpp"
-#include "mesh/TetgenIO.hpp"
 #include "mesh/SurfacePrimitives.hpp"
+#include "mesh/TetgenIO.hpp"
 #include "mesh/Tetrahedralize.hpp"
 
 namespace orthosim {
@@ -37,7 +37,8 @@ using Surface = SurfaceMesh;
 double enclosedVolume(const Surface& s) {
   double v = 0;
   for (int t = 0; t < s.triangles.cols(); ++t)
-    v += s.vertices.col(s.triangles(0, t)).dot(s.vertices.col(s.triangles(1, t)).cross(s.vertices.col(s.triangles(2, t))));
+    v += s.vertices.col(s.triangles(0, t))
+             .dot(s.vertices.col(s.triangles(1, t)).cross(s.vertices.col(s.triangles(2, t))));
   return v / 6;
 }
 
@@ -60,7 +61,8 @@ std::set<std::array<int, 3>> orientedSet(const Eigen::Matrix3Xi& tris) {
 
 Eigen::Vector3d circumcentre(const TetMesh& m, int e) {
   const Eigen::Vector3d x0 = m.rest.col(m.tets(0, e));
-  const Eigen::Vector3d a = m.rest.col(m.tets(1, e)) - x0, b = m.rest.col(m.tets(2, e)) - x0, c = m.rest.col(m.tets(3, e)) - x0;
+  const Eigen::Vector3d a = m.rest.col(m.tets(1, e)) - x0, b = m.rest.col(m.tets(2, e)) - x0,
+                        c = m.rest.col(m.tets(3, e)) - x0;
   return x0 + (a.squaredNorm() * b.cross(c) + b.squaredNorm() * c.cross(a) + c.squaredNorm() * a.cross(b)) /
                   (2 * a.dot(b.cross(c)));
 }
@@ -72,7 +74,8 @@ bool encroachesSurface(const Eigen::Vector3d& p, const Surface& s) {
     const Eigen::Vector3d x0 = s.vertices.col(s.triangles(0, t));
     const Eigen::Vector3d a = s.vertices.col(s.triangles(1, t)) - x0, b = s.vertices.col(s.triangles(2, t)) - x0;
     const Eigen::Vector3d n = a.cross(b);
-    const Eigen::Vector3d c = x0 + (a.squaredNorm() * b.cross(n) + b.squaredNorm() * n.cross(a)) / (2 * n.squaredNorm());
+    const Eigen::Vector3d c =
+        x0 + (a.squaredNorm() * b.cross(n) + b.squaredNorm() * n.cross(a)) / (2 * n.squaredNorm());
     if ((p - c).norm() < (x0 - c).norm()) return true;
   }
   return false;
@@ -154,7 +157,8 @@ TEST(Tetrahedralize, IcosphereKeepsItsSurfaceAndMeetsTheRadiusEdgeBound) {
     expectValidMesh(m, sphere, enclosedVolume(sphere));
     EXPECT_GT(m.numNodes(), sphere.vertices.cols()) << "Steiner points inside";
     EXPECT_EQ(orientedSet(boundaryFaces(m)), orientedSet(sphere.triangles));
-    const AboveBound r = aboveBound(m, sphere, [&](int e) { return radiusEdgeRatio(m, e); }, bound);
+    const AboveBound r = aboveBound(
+        m, sphere, [&](int e) { return radiusEdgeRatio(m, e); }, bound);
     expectWithinTetgenGuarantee(r, m.numTets(), 0.01, "radius-edge " + std::to_string(bound));
     if (bound >= 1.5) EXPECT_LE(q.maxRadiusEdgeRatio, bound) << "met everywhere on this fine surface";
     EXPECT_GT(q.minDihedralDeg, 0);
@@ -170,7 +174,8 @@ TEST(Tetrahedralize, MaxVolumeGivesMoreAndSmallerTets) {
   const TetMesh fine = tetrahedralize(sphere.vertices, sphere.triangles, o);
   expectValidMesh(fine, sphere, enclosedVolume(sphere));
   EXPECT_GT(fine.numTets(), 2 * plain.numTets());
-  const AboveBound r = aboveBound(fine, sphere, [&](int e) { return fine.signedVolume(e, fine.rest); }, o.maxVolume);
+  const AboveBound r = aboveBound(
+      fine, sphere, [&](int e) { return fine.signedVolume(e, fine.rest); }, o.maxVolume);
   expectWithinTetgenGuarantee(r, fine.numTets(), 0.1, "-a1 on 1280 triangles");
   EXPECT_EQ(r.encroaching, 0) << "this surface is fine enough for the bound everywhere near it";
   std::cout << plain.numTets() << " tets without a volume bound, " << fine.numTets() << " with -a1\n";
@@ -185,7 +190,8 @@ TEST(Tetrahedralize, CoarseSurfaceLimitsTheBoundsNearTheSurface) {
   const TetMesh m = tetrahedralize(sphere.vertices, sphere.triangles, o);
   expectValidMesh(m, sphere, enclosedVolume(sphere));
   EXPECT_EQ(orientedSet(boundaryFaces(m)), orientedSet(sphere.triangles));
-  const AboveBound r = aboveBound(m, sphere, [&](int e) { return m.signedVolume(e, m.rest); }, o.maxVolume);
+  const AboveBound r = aboveBound(
+      m, sphere, [&](int e) { return m.signedVolume(e, m.rest); }, o.maxVolume);
   expectWithinTetgenGuarantee(r, m.numTets(), 0.1, "-a1 on 320 triangles with -Y");
   EXPECT_GT(r.encroaching, 0) << "expected the surface to limit -a here; the test no longer shows the -Y limit";
 
@@ -197,7 +203,8 @@ TEST(Tetrahedralize, CoarseSurfaceLimitsTheBoundsNearTheSurface) {
   std::cout << "icosphere -" << tetgenSwitches(o) << ": " << q << "\n";
   expectValidMesh(free, sphere, enclosedVolume(sphere));
   EXPECT_GT(q.boundaryFaces, sphere.triangles.cols());
-  const AboveBound rf = aboveBound(free, sphere, [&](int e) { return free.signedVolume(e, free.rest); }, o.maxVolume);
+  const AboveBound rf = aboveBound(
+      free, sphere, [&](int e) { return free.signedVolume(e, free.rest); }, o.maxVolume);
   EXPECT_EQ(rf.encroaching, 0) << "without -Y no split point is refused for encroaching the surface";
   expectWithinTetgenGuarantee(rf, free.numTets(), 0.1, "-a1 on 320 triangles without -Y");
 }
@@ -382,7 +389,7 @@ TEST(MeshQuality, RegularTetAndInvertedTet) {
   EXPECT_NEAR(q.minDihedralDeg, dihedral, 1e-12);
   EXPECT_NEAR(q.maxDihedralDeg, dihedral, 1e-12);
   EXPECT_NEAR(q.maxRadiusEdgeRatio, std::sqrt(6.0) / 4, 1e-12);  // the smallest any tet has
-  EXPECT_NEAR(q.minVolume, 8.0 / 3, 1e-12);                       // edge 2 sqrt(2)
+  EXPECT_NEAR(q.minVolume, 8.0 / 3, 1e-12);                      // edge 2 sqrt(2)
   std::swap(m.tets(1, 0), m.tets(2, 0));
   q = measureQuality(m);
   EXPECT_NEAR(q.minVolume, -8.0 / 3, 1e-12) << "an inverted tet shows as a negative volume";

@@ -10,12 +10,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "TissueScene.hpp"
 #include "mesh/SelfIntersection.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfacePrimitives.hpp"
 #include "mesh/TissueBoolean.hpp"
-#include "TissueScene.hpp"
 
 namespace orthosim {
 namespace {
@@ -87,12 +87,10 @@ TEST(TissueBoolean, LabelsNameTheSurfaceEveryTriangleLiesOn) {
   }
   // A box face meets the skin sphere only along the seam: its labelled triangles are not on it
   // elsewhere (the test above would pass for any label if the surfaces coincided).
-  const Eigen::VectorXd offSkin =
-      distancesToSurface(scene.skin.vertices, scene.skin.triangles, labelVertices(s, 2));
+  const Eigen::VectorXd offSkin = distancesToSurface(scene.skin.vertices, scene.skin.triangles, labelVertices(s, 2));
   EXPECT_GT(offSkin.maxCoeff(), 5.0);
   // Subtracting in another order gives the same volume.
-  const LabelledSurface reversed =
-      subtractSurfaces(scene.skin, {scene.solids[2], scene.solids[1], scene.solids[0]});
+  const LabelledSurface reversed = subtractSurfaces(scene.skin, {scene.solids[2], scene.solids[1], scene.solids[0]});
   EXPECT_NEAR(reversed.surface.signedVolume(), s.surface.signedVolume(), 1e-9 * s.surface.signedVolume());
 }
 
@@ -139,8 +137,11 @@ TEST(TissueBoolean, BadInputsAreNamed) {
   const test::TissueScene scene = tissueScene(3, 2);
   SurfaceMesh open = scene.solids[0];
   open.triangles.conservativeResize(3, open.numTriangles() - 1);
-  expectError([&] { subtractSurfaces(scene.skin, {scene.solids[1], open}, {"bone", "oral cavity"}); },
-              "solid 1 (oral cavity): not closed (3 border edges)");
+  expectError(
+      [&] {
+        subtractSurfaces(scene.skin, {scene.solids[1], open}, {"bone", "oral cavity"});
+      },
+      "solid 1 (oral cavity): not closed (3 border edges)");
 
   SurfaceMesh crossing = scene.skin;  // two overlapping spheres as one surface
   const SurfaceMesh other = makeIcosphere(30, 2, Eigen::Vector3d(40, 0, 0));

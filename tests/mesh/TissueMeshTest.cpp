@@ -60,8 +60,8 @@ TEST(TissueMesh, TetsFillExactlyTheTissueWithLabelledInterfaces) {
   for (int k = 0; k < 3; ++k) {
     ASSERT_FALSE(r.solidNodes[k].empty()) << k;
     EXPECT_TRUE(std::is_sorted(r.solidNodes[k].begin(), r.solidNodes[k].end()));
-    const Eigen::VectorXd d = distancesToSurface(scene.solids[k].vertices, scene.solids[k].triangles,
-                                                 nodes(r.mesh, r.solidNodes[k]));
+    const Eigen::VectorXd d =
+        distancesToSurface(scene.solids[k].vertices, scene.solids[k].triangles, nodes(r.mesh, r.solidNodes[k]));
     EXPECT_LT(d.maxCoeff(), 1e-9 * 100) << "solid " << k;
   }
   EXPECT_LT(distancesToSurface(scene.skin.vertices, scene.skin.triangles, nodes(r.mesh, r.skinNodes)).maxCoeff(),
@@ -107,11 +107,11 @@ TEST(TissueMesh, DISABLED_Timing) {
     const auto start = std::chrono::steady_clock::now();
     const TissueMeshResult r = buildTissueMesh(scene.skin, scene.solids, o);
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cout << "skin " << scene.skin.numTriangles() << " + solids " << scene.solids[0].numTriangles() << " x3, target "
-              << target << ": total " << total << " s (boolean " << r.boolean_s << ", simplify " << r.simplify_s
-              << ", tetgen " << r.tetgen_s << "); boundary " << r.booleanTriangles << " -> " << r.boundary.numTriangles()
-              << " (skin " << r.simplify.skinTriangles << ", rounds " << r.simplify.rounds << ", frozen "
-              << r.simplify.frozenTriangles << "), " << r.quality << "\n";
+    std::cout << "skin " << scene.skin.numTriangles() << " + solids " << scene.solids[0].numTriangles()
+              << " x3, target " << target << ": total " << total << " s (boolean " << r.boolean_s << ", simplify "
+              << r.simplify_s << ", tetgen " << r.tetgen_s << "); boundary " << r.booleanTriangles << " -> "
+              << r.boundary.numTriangles() << " (skin " << r.simplify.skinTriangles << ", rounds " << r.simplify.rounds
+              << ", frozen " << r.simplify.frozenTriangles << "), " << r.quality << "\n";
     EXPECT_NEAR(r.simplify.skinTriangles, target, 0.1 * target);
   }
 }

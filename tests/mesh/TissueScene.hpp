@@ -7,8 +7,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "mesh/SurfacePrimitives.hpp"
 #include "mesh/SurfaceMesh.hpp"
+#include "mesh/SurfacePrimitives.hpp"
 
 namespace orthosim::test {
 
@@ -36,7 +36,8 @@ inline TissueScene tissueScene(int envelopeLevels = 4, int boneLevels = 3) {
   SurfaceMesh poking = makeIcosphere(20, boneLevels, Eigen::Vector3d(20, 0.5, 50));
   SurfaceMesh cavity = makeIcosphere(1, boneLevels);
   for (int i = 0; i < cavity.numVertices(); ++i)
-    cavity.vertices.col(i) = Eigen::Vector3d(35, 0.3, 29) + Eigen::Vector3d(35, 18, 4).cwiseProduct(cavity.vertices.col(i));
+    cavity.vertices.col(i) =
+        Eigen::Vector3d(35, 0.3, 29) + Eigen::Vector3d(35, 18, 4).cwiseProduct(cavity.vertices.col(i));
   poking.uv.resize(2, 0);
   cavity.uv.resize(2, 0);
   s.solids = {inner, poking, cavity};

@@ -134,7 +134,8 @@ TEST_P(PhantomVariants, SurfacesAreClosedOutwardAndEmbedded) {
       const double a = minAngleDeg(*s, t);
       thin += a < 15;
       worst = std::min(worst, a);
-      for (int k = 0; k < 3; ++k) sum += (s->vertices.col(s->triangles(k, t)) - s->vertices.col(s->triangles((k + 1) % 3, t))).norm();
+      for (int k = 0; k < 3; ++k)
+        sum += (s->vertices.col(s->triangles(k, t)) - s->vertices.col(s->triangles((k + 1) % 3, t))).norm();
     }
     const double meanEdge = sum / (3.0 * s->numTriangles());
     EXPECT_GT(worst, 2.0) << name << ": a needle triangle";
@@ -155,8 +156,10 @@ TEST_P(PhantomVariants, BonesAreApartAndInsideTheSkin) {
   EXPECT_GE(distancesToSurface(p.skull.vertices, p.skull.triangles, p.mandible.vertices).minCoeff(), 1.0);
   EXPECT_GE(distancesToSurface(p.mandible.vertices, p.mandible.triangles, p.skull.vertices).minCoeff(), 1.0);
   const InsideTest skin(p.skin);
-  for (int i = 0; i < p.mandible.numVertices(); ++i) ASSERT_TRUE(skin.inside(p.mandible.vertices.col(i))) << "mandible vertex " << i;
-  for (int i = 0; i < p.skull.numVertices(); ++i) ASSERT_TRUE(skin.inside(p.skull.vertices.col(i))) << "skull vertex " << i;
+  for (int i = 0; i < p.mandible.numVertices(); ++i)
+    ASSERT_TRUE(skin.inside(p.mandible.vertices.col(i))) << "mandible vertex " << i;
+  for (int i = 0; i < p.skull.numVertices(); ++i)
+    ASSERT_TRUE(skin.inside(p.skull.vertices.col(i))) << "skull vertex " << i;
   // The face: skin facing forward, in front of the ears.
   const Eigen::Matrix3Xd n = p.skin.vertexNormals();
   std::vector<Eigen::Vector3d> face;
@@ -184,7 +187,8 @@ TEST_P(PhantomVariants, OralCavityOpensTheMouthAndHoldsTheCrowns) {
   EXPECT_GT(inMandible, 50);
   // Crown tips stand in the air; the slit crosses the lips at the stomion and is thin there.
   for (const char* tip : {"upper_incisor_tip", "lower_incisor_tip", "upper_molar_left", "lower_molar_right"})
-    EXPECT_TRUE(cavity.inside(hard(GetParam(), tip) + Eigen::Vector3d(0, 0, std::string(tip).rfind("upper", 0) == 0 ? -0.2 : 0.2)))
+    EXPECT_TRUE(cavity.inside(hard(GetParam(), tip) +
+                              Eigen::Vector3d(0, 0, std::string(tip).rfind("upper", 0) == 0 ? -0.2 : 0.2)))
         << tip;
   const Eigen::Vector3d st = soft(GetParam(), "stomion");
   EXPECT_TRUE(cavity.inside(st + Eigen::Vector3d(-3, 0, 0)));
@@ -208,7 +212,8 @@ TEST_P(PhantomVariants, EveryCrownStandsInTheAir) {
   for (double s = -sEnd + 0.5; s <= sEnd - 0.5; s += 1.0) {
     const Eigen::Vector3d tip = phantom::upperCrownTip(s);
     for (double dz : {-0.75, 0.0, 3.0})
-      EXPECT_TRUE(cavity.inside(tip + Eigen::Vector3d(0, 0, dz))) << "arch length " << s << " mm, " << dz << " mm above the tip";
+      EXPECT_TRUE(cavity.inside(tip + Eigen::Vector3d(0, 0, dz)))
+          << "arch length " << s << " mm, " << dz << " mm above the tip";
   }
 }
 
@@ -284,7 +289,8 @@ TEST(Phantom, ClassIDimensionsArePlausible) {
   EXPECT_GE(chin, 9);
   EXPECT_LE(chin, 15);
   const Phantom& p = phantomOf(v);
-  const double lip = distancesToSurface(p.skull.vertices, p.skull.triangles, Eigen::Matrix3Xd(soft(v, "labrale_superius")))[0];
+  const double lip =
+      distancesToSurface(p.skull.vertices, p.skull.triangles, Eigen::Matrix3Xd(soft(v, "labrale_superius")))[0];
   EXPECT_GE(lip, 10);
   EXPECT_LE(lip, 17);
   const double overjet = hard(v, "lower_incisor_tip").x() - hard(v, "upper_incisor_tip").x();
@@ -311,15 +317,15 @@ TEST(Phantom, ClassIDimensionsArePlausible) {
 // The variants differ where they should, and only there.
 TEST(Phantom, VariantsDifferMeasurably) {
   auto overjet = [](int v) { return hard(v, "lower_incisor_tip").x() - hard(v, "upper_incisor_tip").x(); };
-  EXPECT_GT(overjet(1), 5.0);  // class II
-  EXPECT_LT(overjet(2), 0.0);  // class III: lower incisors ahead
+  EXPECT_GT(overjet(1), 5.0);                                                 // class II
+  EXPECT_LT(overjet(2), 0.0);                                                 // class III: lower incisors ahead
   EXPECT_LT(soft(2, "soft_pogonion").x(), soft(0, "soft_pogonion").x() - 3);  // the chin follows
   EXPECT_GT(soft(1, "soft_pogonion").x(), soft(0, "soft_pogonion").x() + 3);
   EXPECT_NEAR(hard(0, "pogonion").y(), 0.0, 1e-9);
   EXPECT_GT(hard(3, "pogonion").y(), 4.0);  // asymmetric: chin to the right
   EXPECT_GT(soft(3, "soft_pogonion").y(), 4.0);
   auto lowerFace = [](int v) { return (soft(v, "soft_menton") - soft(v, "subnasale")).norm(); };
-  EXPECT_GT(lowerFace(4), lowerFace(0) + 4.0);  // long face
+  EXPECT_GT(lowerFace(4), lowerFace(0) + 4.0);                                          // long face
   EXPECT_GT(hard(4, "upper_incisor_tip").z() - hard(4, "lower_incisor_tip").z(), 3.5);  // open bite
   for (int v = 1; v < 5; ++v) {  // the maxilla is the same in every variant
     EXPECT_EQ(phantomOf(v).skull.vertices, phantomOf(0).skull.vertices);
@@ -330,13 +336,17 @@ TEST(Phantom, VariantsDifferMeasurably) {
 TEST(Phantom, IsDeterministic) {
   const Phantom a = makePhantom({0, 1.5});
   const Phantom& b = phantomOf(0);
-  for (auto [x, y] : {std::pair{&a.skin, &b.skin}, {&a.skull, &b.skull}, {&a.mandible, &b.mandible}, {&a.oralCavity, &b.oralCavity}}) {
+  for (auto [x, y] : {std::pair{&a.skin, &b.skin},
+                      {&a.skull, &b.skull},
+                      {&a.mandible, &b.mandible},
+                      {&a.oralCavity, &b.oralCavity}}) {
     EXPECT_EQ(x->vertices, y->vertices);  // bit for bit
     EXPECT_EQ(x->triangles, y->triangles);
     EXPECT_EQ(x->uv, y->uv);
   }
   ASSERT_EQ(a.hardLandmarks.size(), b.hardLandmarks.size());
-  for (size_t i = 0; i < a.hardLandmarks.size(); ++i) EXPECT_EQ(a.hardLandmarks[i].position, b.hardLandmarks[i].position);
+  for (size_t i = 0; i < a.hardLandmarks.size(); ++i)
+    EXPECT_EQ(a.hardLandmarks[i].position, b.hardLandmarks[i].position);
   EXPECT_EQ(a.skinTexture.pixels, b.skinTexture.pixels);
 }
 
@@ -371,7 +381,7 @@ TEST(Phantom, TextureShowsLipsOnSkin) {
   };
   const Eigen::Vector3d lip = colourAt(soft(0, "labrale_inferius")), cheek = colourAt(soft(0, "cheek_left"));
   EXPECT_GT(lip.x() - lip.y(), cheek.x() - cheek.y() + 25);  // redder
-  EXPECT_GT(cheek.x(), 180);                                  // light skin tone
+  EXPECT_GT(cheek.x(), 180);                                 // light skin tone
 }
 
 TEST(Phantom, WritesFilesThatReadBack) {
@@ -385,9 +395,11 @@ TEST(Phantom, WritesFilesThatReadBack) {
   double uvError = 0;  // corner by corner: the reader may number the vertices differently
   for (int t = 0; t < skin.numTriangles(); ++t)
     for (int k = 0; k < 3; ++k)
-      uvError = std::max(uvError, (skin.uv.col(skin.triangles(k, t)) - p.skin.uv.col(p.skin.triangles(k, t))).cwiseAbs().maxCoeff());
+      uvError = std::max(
+          uvError, (skin.uv.col(skin.triangles(k, t)) - p.skin.uv.col(p.skin.triangles(k, t))).cwiseAbs().maxCoeff());
   EXPECT_LT(uvError, 1e-6);
-  for (auto [file, mesh] : {std::pair{"skull.stl", &p.skull}, {"mandible.stl", &p.mandible}, {"oral_cavity.stl", &p.oralCavity}}) {
+  for (auto [file, mesh] :
+       {std::pair{"skull.stl", &p.skull}, {"mandible.stl", &p.mandible}, {"oral_cavity.stl", &p.oralCavity}}) {
     const SurfaceMesh m = importSurface((dir / file).string());
     EXPECT_EQ(m.numVertices(), mesh->numVertices()) << file;
     EXPECT_EQ(m.numTriangles(), mesh->numTriangles()) << file;

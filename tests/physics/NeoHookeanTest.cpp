@@ -89,7 +89,8 @@ TEST(NeoHookean, ProjectionClampsNegativeEigenvaluesOnly) {
     const Matrix9d proj = kTissue.stressDerivative(F, true);
     Eigen::SelfAdjointEigenSolver<Matrix9d> eig(exact);
     // The definition: same eigenvectors, eigenvalues clamped at zero.
-    const Matrix9d expected = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+    const Matrix9d expected =
+        eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
     EXPECT_LT((proj - expected).norm(), 1e-9 * (1 + exact.norm())) << "trial " << trial;
     if (eig.eigenvalues().minCoeff() < 0) ++projectedCases;
   }
@@ -112,7 +113,8 @@ TEST_P(NeoHookeanProjection, TwoThousandRandomFGiveAPositiveSemiDefiniteClampedH
     const Matrix9d exact = m.stressDerivative(F, false);
     const Matrix9d proj = m.stressDerivative(F, true);
     Eigen::SelfAdjointEigenSolver<Matrix9d> eig(exact), eigProj(proj);
-    const Matrix9d expected = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+    const Matrix9d expected =
+        eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
     if (eigProj.eigenvalues().minCoeff() < -1e-12 * exact.norm()) ++indefinite;
     if ((proj - expected).norm() > 1e-9 * (1 + exact.norm())) ++wrong;
   }
@@ -259,7 +261,8 @@ TEST_F(ElementTest, RoundingScaleIsMuTimesTheActiveVolume) {
   const Eigen::Matrix3Xd rotated = (R * mesh.rest).colwise() + Eigen::Vector3d(40, -25, 13);
   EXPECT_LT(std::abs(energy.energy(rotated)), 1e-13 * energy.roundingScale());  // rounding only
   energy.restrictTo({0, 1});
-  EXPECT_NEAR(energy.roundingScale(), kTissue.mu * (mesh.signedVolume(0, mesh.rest) + mesh.signedVolume(1, mesh.rest)), 1e-12);
+  EXPECT_NEAR(energy.roundingScale(), kTissue.mu * (mesh.signedVolume(0, mesh.rest) + mesh.signedVolume(1, mesh.rest)),
+              1e-12);
 }
 
 }  // namespace

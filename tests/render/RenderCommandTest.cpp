@@ -26,8 +26,9 @@ class RenderCommand : public ::testing::Test {
 
   // Runs `orthosim render CASE <args>` with stderr in dir/err.txt; returns the exit code.
   int render(const std::string& args, const std::string& environment = "") const {
-    const std::string cmd = environment + " " + std::string(ORTHOSIM_CLI) + " render " + casePath_ + " --cache " ORTHOSIM_TEST_CACHE_DIR " " +
-                            args + " > /dev/null 2> " + (dir_ / "err.txt").string();
+    const std::string cmd = environment + " " + std::string(ORTHOSIM_CLI) + " render " + casePath_ +
+                            " --cache " ORTHOSIM_TEST_CACHE_DIR " " + args + " > /dev/null 2> " +
+                            (dir_ / "err.txt").string();
     return WEXITSTATUS(std::system(cmd.c_str()));
   }
   std::string errors() const {
@@ -43,15 +44,19 @@ class RenderCommand : public ::testing::Test {
 TEST_F(RenderCommand, RendersAPlanFileToAnImage) {
   std::ofstream(dir_ / "plan.json") << R"({"plan": {"maxilla": {"translation_mm": [-3, 0, 0]}}})";
   const fs::path out = dir_ / "face.png";
-  ASSERT_EQ(render("--plan " + (dir_ / "plan.json").string() + " --view profile --width 160 --height 120 --colormap displacement --out " +
-                   out.string()), 0) << errors();
+  ASSERT_EQ(render("--plan " + (dir_ / "plan.json").string() +
+                   " --view profile --width 160 --height 120 --colormap displacement --out " + out.string()),
+            0)
+      << errors();
   const RgbImage img = render::readImage(out.string());
   EXPECT_EQ(img.width, 160);
   EXPECT_EQ(img.height, 120);
   // The prediction against a reference surface: here the case's own rest skin, as a scan would be.
   const fs::path diff = dir_ / "diff.jpg";
   ASSERT_EQ(render("--plan " + (dir_ / "plan.json").string() + " --colormap difference --reference " +
-                   (dir_ / "case" / "skin.obj").string() + " --width 160 --height 120 --out " + diff.string()), 0) << errors();
+                   (dir_ / "case" / "skin.obj").string() + " --width 160 --height 120 --out " + diff.string()),
+            0)
+      << errors();
   EXPECT_EQ(render::readImage(diff.string()).width, 160);
 }
 
@@ -69,7 +74,8 @@ TEST_F(RenderCommand, BadInputIsNamedAndExitsWithOne) {
   // The case names a texture that is not there.
   fs::remove(dir_ / "case" / "skin.jpg");
   EXPECT_EQ(render(out), 1);
-  EXPECT_NE(errors().find("tissue.texture: " + (dir_ / "case" / "skin.jpg").string() + ": image file not found"), std::string::npos)
+  EXPECT_NE(errors().find("tissue.texture: " + (dir_ / "case" / "skin.jpg").string() + ": image file not found"),
+            std::string::npos)
       << errors();
   EXPECT_FALSE(fs::exists(dir_ / "x.png"));
 }

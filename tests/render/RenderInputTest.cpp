@@ -43,7 +43,9 @@ RgbImage gradientImage(int w, int h) {
   RgbImage img{w, h, std::vector<unsigned char>(static_cast<size_t>(w) * h * 3)};
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c) img.pixels[3 * (static_cast<size_t>(y) * w + x) + c] = static_cast<unsigned char>((x * 4 + y * 2 + c * 60) % 256);
+      for (int c = 0; c < 3; ++c)
+        img.pixels[3 * (static_cast<size_t>(y) * w + x) + c] =
+            static_cast<unsigned char>((x * 4 + y * 2 + c * 60) % 256);
   return img;
 }
 
@@ -53,7 +55,8 @@ TEST(RenderInput, BadSkinsAreRefusedByName) {
   SurfaceMesh bad = triangle();
   bad.triangles(2, 0) = 7;
   EXPECT_NE(errorOf([&] { r.setSkin(bad); }).find("outside 0..2"), std::string::npos);
-  EXPECT_NE(errorOf([&] { r.setSkin(triangle(), gradientImage(4, 4)); }).find("no texture coordinates"), std::string::npos);
+  EXPECT_NE(errorOf([&] { r.setSkin(triangle(), gradientImage(4, 4)); }).find("no texture coordinates"),
+            std::string::npos);
   SurfaceMesh uv = triangle();
   uv.uv = Eigen::Matrix2Xd::Zero(2, 3);
   RgbImage broken = gradientImage(4, 4);
@@ -61,9 +64,13 @@ TEST(RenderInput, BadSkinsAreRefusedByName) {
   EXPECT_NE(errorOf([&] { r.setSkin(uv, broken); }).find("not an RGB image"), std::string::npos);
   EXPECT_NE(errorOf([&] { r.updateSkin(Eigen::Matrix3Xd::Zero(3, 3)); }).find("no skin set"), std::string::npos);
   r.setSkin(uv, gradientImage(4, 4));
-  EXPECT_NE(errorOf([&] { r.updateSkin(Eigen::Matrix3Xd::Zero(3, 4)); }).find("4 new positions for 3 vertices"), std::string::npos);
-  EXPECT_NE(errorOf([&] { r.setSkinValues(Eigen::VectorXd::Zero(2)); }).find("2 colour-map values for 3 vertices"), std::string::npos);
-  EXPECT_NE(errorOf([&] { r.setSkinValues(Eigen::VectorXd::Zero(3), {1, 0}); }).find("2 colour-map flags for 3 vertices"),
+  EXPECT_NE(errorOf([&] { r.updateSkin(Eigen::Matrix3Xd::Zero(3, 4)); }).find("4 new positions for 3 vertices"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { r.setSkinValues(Eigen::VectorXd::Zero(2)); }).find("2 colour-map values for 3 vertices"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] {
+              r.setSkinValues(Eigen::VectorXd::Zero(3), {1, 0});
+            }).find("2 colour-map flags for 3 vertices"),
             std::string::npos);
   RenderOptions o;
   o.skinOpacity = 0;
@@ -110,7 +117,8 @@ TEST(RenderInput, PngAndJpegRoundTrip) {
   const std::vector<unsigned char> jpeg = encoder.encode(img);
   encoder.encode(gradientImage(16, 16));  // a smaller frame in between reuses the buffer
   EXPECT_EQ(encoder.encode(img), jpeg);
-  std::ofstream(dir / "a.jpg", std::ios::binary).write(reinterpret_cast<const char*>(jpeg.data()), static_cast<std::streamsize>(jpeg.size()));
+  std::ofstream(dir / "a.jpg", std::ios::binary)
+      .write(reinterpret_cast<const char*>(jpeg.data()), static_cast<std::streamsize>(jpeg.size()));
   const RgbImage back = readImage((dir / "a.jpg").string());
   ASSERT_EQ(back.width, 64);
   ASSERT_EQ(back.height, 48);

@@ -69,7 +69,9 @@ class RenderPhantom : public ::testing::Test {
   static bool isBackground(const RgbImage& img, int x, int y, const RenderOptions& o = {}) {
     return (pixel(img, x, y).cast<double>() - 255.0 * o.background.cast<double>()).cwiseAbs().maxCoeff() <= 1.0;
   }
-  static bool covered(const std::vector<float>& depth, int x, int y) { return depth[static_cast<size_t>(y) * kWidth + x] < 1.0f; }
+  static bool covered(const std::vector<float>& depth, int x, int y) {
+    return depth[static_cast<size_t>(y) * kWidth + x] < 1.0f;
+  }
   // Covered pixels whose 8 neighbours are covered too: away from the silhouette.
   static bool inside(const std::vector<float>& depth, int x, int y) {
     for (int dy = -1; dy <= 1; ++dy)

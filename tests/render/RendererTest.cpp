@@ -4,9 +4,9 @@
 #include <map>
 #include <thread>
 
-#include "render/SurfaceDifference.hpp"
-#include "render/RenderError.hpp"
 #include "RenderPhantom.hpp"
+#include "render/RenderError.hpp"
+#include "render/SurfaceDifference.hpp"
 
 namespace orthosim::render::test {
 namespace {
@@ -141,7 +141,8 @@ TEST_F(Renderer, DifferenceMapGreysVerticesOutOfTheMap) {
   auto r = phantomRenderer();
   const Eigen::Matrix3Xd& v = model().tissue.skin.vertices;
   std::vector<char> inMap(static_cast<size_t>(v.cols()));
-  for (Eigen::Index i = 0; i < v.cols(); ++i) inMap[static_cast<size_t>(i)] = model().spec.frame.right.dot(v.col(i)) <= 0;
+  for (Eigen::Index i = 0; i < v.cols(); ++i)
+    inMap[static_cast<size_t>(i)] = model().spec.frame.right.dot(v.col(i)) <= 0;
   RenderOptions o;
   o.colorMap = ColorMap::Difference;
   r->setSkinValues(Eigen::VectorXd::Constant(v.cols(), 2.0), inMap);
@@ -152,7 +153,8 @@ TEST_F(Renderer, DifferenceMapGreysVerticesOutOfTheMap) {
   const ProjectedPoint left = cam.project(softLandmark("cheek_left"), kWidth, kHeight);
   const Eigen::Vector3i pr = pixel(img, int(0.5 * (nose.x + right.x)), int(0.5 * (nose.y + right.y)));
   const Eigen::Vector3i pl = pixel(img, int(0.5 * (nose.x + left.x)), int(0.5 * (nose.y + left.y)));
-  EXPECT_LE((pr - Eigen::Vector3i::Constant(pr.x())).cwiseAbs().maxCoeff(), 3) << "right cheek, out of the map: " << pr.transpose();
+  EXPECT_LE((pr - Eigen::Vector3i::Constant(pr.x())).cwiseAbs().maxCoeff(), 3)
+      << "right cheek, out of the map: " << pr.transpose();
   EXPECT_GT(pr.x(), 40) << "lit grey, not background: " << pr.transpose();
   EXPECT_GT(pl.x() - pl.z(), 40) << "left cheek, in the map (+2 mm: red): " << pl.transpose();
 }
@@ -185,7 +187,8 @@ TEST_F(Renderer, ViewPresetsDifferAsExpected) {
     if (e.first >= 0) ++filled, asymmetric += std::abs((e.first + e.second) - (kWidth - 1)) > 4;
   EXPECT_LT(asymmetric, filled / 20) << "rows off-centre in the frontal view";
 
-  for (ClinicalView v : {ClinicalView::Frontal, ClinicalView::Profile, ClinicalView::ThreeQuarter, ClinicalView::WormsEye}) {
+  for (ClinicalView v :
+       {ClinicalView::Frontal, ClinicalView::Profile, ClinicalView::ThreeQuarter, ClinicalView::WormsEye}) {
     const Camera c = camera(v, *r);
     const AnatomicalFrame& f = c.frame;
     const Eigen::Vector3d toEye = (c.eye() - c.target).normalized();
@@ -214,7 +217,8 @@ TEST_F(Renderer, UpdateSkinMovesTheImage) {
   EXPECT_THROW(r->updateSkin(Eigen::Matrix3Xd::Zero(3, 10)), RenderError);
 }
 
-// Bones only, from the front: the maxilla piece's front comes 5 mm closer to the camera when its fragment's pose moves it 5 mm anteriorly.
+// Bones only, from the front: the maxilla piece's front comes 5 mm closer to the camera when its fragment's pose moves
+// it 5 mm anteriorly.
 TEST_F(Renderer, BonePiecesFollowTheirFragmentPoses) {
   auto r = phantomRenderer();
   RenderOptions o;
@@ -223,14 +227,16 @@ TEST_F(Renderer, BonePiecesFollowTheirFragmentPoses) {
   const Camera cam = camera(ClinicalView::Frontal, *r, o);
   const std::vector<BonePiece> pieces = caseBonePieces(model());
   const int maxilla = model().coupling.fragmentIndex("maxilla");
-  const auto piece = std::find_if(pieces.begin(), pieces.end(), [&](const BonePiece& p) { return p.fragmentIndex == maxilla; });
+  const auto piece =
+      std::find_if(pieces.begin(), pieces.end(), [&](const BonePiece& p) { return p.fragmentIndex == maxilla; });
   ASSERT_NE(piece, pieces.end());
   // The most anterior point of its middle third in height (the alveolus above the incisors): the
   // incisal edges are its lower silhouette seen from the front, and the Le Fort I cut its top edge.
   const AnatomicalFrame& f = model().spec.frame;
   const Eigen::Matrix3Xd& v = piece->surface.vertices;
   const Eigen::RowVectorXd up = f.superior.transpose() * v, ahead = f.anterior.transpose() * v;
-  const double low = up.minCoeff() + (up.maxCoeff() - up.minCoeff()) / 3, high = low + (up.maxCoeff() - up.minCoeff()) / 3;
+  const double low = up.minCoeff() + (up.maxCoeff() - up.minCoeff()) / 3,
+               high = low + (up.maxCoeff() - up.minCoeff()) / 3;
   Eigen::Index front = -1;
   for (Eigen::Index i = 0; i < v.cols(); ++i)
     if (up[i] > low && up[i] < high && (front < 0 || ahead[i] > ahead[front])) front = i;
@@ -270,7 +276,8 @@ TEST_F(Renderer, BeforeAfterAndLegendLayout) {
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x)
       if (covered(depth, x, y)) (x < kWidth / 2 ? bottomLeft : bottomRight) = y;
-  EXPECT_NEAR(bottomLeft - bottomRight, 15.0 / cam.mmPerPixel(kHeight - 30), 3.0) << "the after half shows the skin 15 mm higher";
+  EXPECT_NEAR(bottomLeft - bottomRight, 15.0 / cam.mmPerPixel(kHeight - 30), 3.0)
+      << "the after half shows the skin 15 mm higher";
   bool red = false, drawnInStrip = false;  // the legend's 10 mm end, dark red, in the bottom strip
   for (int y = kHeight - 30; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x) {

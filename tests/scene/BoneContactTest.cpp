@@ -15,8 +15,8 @@
 #include "mesh/BoxMesh.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
-#include "mesh/TetgenIO.hpp"
 #include "mesh/SurfacePrimitives.hpp"
+#include "mesh/TetgenIO.hpp"
 #include "scene/BoneContact.hpp"
 #include "scene/SceneFile.hpp"
 
@@ -116,8 +116,7 @@ TEST(BoneContact, RefusesBadInputNamingTheDefect) {
   };
   EXPECT_NE(message([&] { nodesNearBone(mesh.rest, {75}, plate); }).find("candidate node 75 is not in the mesh"),
             std::string::npos);
-  EXPECT_NE(message([&] { nodesNearBone(mesh.rest, {0}, plate, 0.0); }).find("must be a positive"),
-            std::string::npos);
+  EXPECT_NE(message([&] { nodesNearBone(mesh.rest, {0}, plate, 0.0); }).find("must be a positive"), std::string::npos);
   SurfaceMesh flat = plate;
   flat.vertices.row(1).setZero();  // every triangle collapses onto a line
   EXPECT_NE(message([&] { nodesNearBone(mesh.rest, {0}, flat); }).find("no triangle of positive area"),
@@ -145,8 +144,8 @@ TEST(BoneContact, RealFaceDerivedMandibleGroupRecoversTheAttachedNodes) {
   double recall2 = 0;
   for (double dist : {1.0, 2.0}) {
     const BoneContact c = nodesNearBone(X, deep, mandible, dist);
-    const int common = static_cast<int>(
-        std::count_if(c.nodes.begin(), c.nodes.end(), [&](int i) { return givenSet.count(i) > 0; }));
+    const int common =
+        static_cast<int>(std::count_if(c.nodes.begin(), c.nodes.end(), [&](int i) { return givenSet.count(i) > 0; }));
     const double recall = double(common) / given.size();
     std::cout << c.summary("mandible") << "; " << common << " of the " << given.size() << " attached nodes ("
               << 100 * recall << "%), " << c.count() - common << " others\n";

@@ -24,11 +24,14 @@ class CaseFileTest : public ::testing::Test {
 
   json minimal() const {
     return {{"tissue", {{"skin", "skin.obj"}, {"cavities", {"mouth.stl"}}}},
-            {"bones", {{{"name", "skull"}, {"surface", "skull.stl"}, {"fixed", true}},
-                       {{"name", "mandible"}, {"surface", "mandible.stl"}}}},
+            {"bones",
+             {{{"name", "skull"}, {"surface", "skull.stl"}, {"fixed", true}},
+              {{"name", "mandible"}, {"surface", "mandible.stl"}}}},
             {"landmarks",
              {{"hard",
-               {{"upper_incisor_apex", {-35, 0, 5}}, {"PNS", {10, 0, 0}}, {"upper_molar_left", {-5, -25, -12}},
+               {{"upper_incisor_apex", {-35, 0, 5}},
+                {"PNS", {10, 0, 0}},
+                {"upper_molar_left", {-5, -25, -12}},
                 {"upper_molar_right", {-5, 25, -12}}}},
               {"soft", {{"stomion", {-50, 0, -20}}}}}},
             {"cuts", {{{"template", "le_fort_1"}, {"bone", "skull"}}}},
@@ -111,7 +114,8 @@ TEST_F(CaseFileTest, EachMistakeIsNamedWithItsField) {
   j["blend_width_mm"] = 0;
   expect(j, "blend_width_mm: must lie in (0, 50]");
   j = minimal();
-  j["cuts"] = {{{"bone", "mandible"}, {"fragment", "chin"}, {"planes", {{{"point_mm", {0, 0, 0}}, {"normal", {0, 0, 0}}}}}}};
+  j["cuts"] = {
+      {{"bone", "mandible"}, {"fragment", "chin"}, {"planes", {{{"point_mm", {0, 0, 0}}, {"normal", {0, 0, 0}}}}}}};
   j.erase("plan");
   expect(j, "cuts[0].planes[0].normal: must not be zero");
   j = minimal();
@@ -121,7 +125,8 @@ TEST_F(CaseFileTest, EachMistakeIsNamedWithItsField) {
 
 TEST_F(CaseFileTest, APlaneCutMakesTheNamedFragment) {
   json j = minimal();
-  j["cuts"] = {{{"bone", "mandible"}, {"fragment", "chin"}, {"planes", {{{"point_mm", {0, 0, -40}}, {"normal", {0, 0, -2}}}}}}};
+  j["cuts"] = {
+      {{"bone", "mandible"}, {"fragment", "chin"}, {"planes", {{{"point_mm", {0, 0, -40}}, {"normal", {0, 0, -2}}}}}}};
   j["plan"] = {{"chin", {{"translation_mm", {-3, 0, 0}}}}};
   const CaseSpec c = load(j);
   ASSERT_EQ(c.regions.size(), 1u);

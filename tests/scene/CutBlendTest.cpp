@@ -17,8 +17,7 @@ namespace {
 TEST(CutBlend, WeightsFollowTheTenMillimetreRule) {
   // d (mm) -> w_B: 0.5 at the cut, linear to 1 at 10 mm on B's side and 0 at 10 mm on A's side.
   const std::vector<std::pair<double, double>> expected = {
-      {0, 0.5},     {2.5, 0.625}, {-2.5, 0.375}, {5, 0.75}, {-5, 0.25},
-      {10, 1.0},    {-10, 0.0},   {15, 1.0},     {-15, 0.0}};
+      {0, 0.5}, {2.5, 0.625}, {-2.5, 0.375}, {5, 0.75}, {-5, 0.25}, {10, 1.0}, {-10, 0.0}, {15, 1.0}, {-15, 0.0}};
   for (const auto& [d, wb] : expected) {
     const CutWeights w = cutWeights(d);
     EXPECT_DOUBLE_EQ(w.b, wb) << "d = " << d;
@@ -63,8 +62,7 @@ TEST(CutBlend, SplitsTheBondedSetOfABoxIntoFragmentsAndABand) {
 
   // A 4 mm band: only the cut column blends; a tilted normal of the wrong length is refused.
   EXPECT_EQ(splitBondedNodes(mesh.rest, bonded, cut, 0, 1, 4.0).blended.size(), 1u * perColumn);
-  EXPECT_THROW(splitBondedNodes(mesh.rest, bonded, {cut.point, Eigen::Vector3d(1, 1, 0)}, 0, 1),
-               std::invalid_argument);
+  EXPECT_THROW(splitBondedNodes(mesh.rest, bonded, {cut.point, Eigen::Vector3d(1, 1, 0)}, 0, 1), std::invalid_argument);
   EXPECT_THROW(splitBondedNodes(mesh.rest, {mesh.numNodes()}, cut, 0, 1), std::invalid_argument);
   EXPECT_THROW(splitBondedNodes(mesh.rest, bonded, cut, 1, 1), std::invalid_argument);
 }
@@ -75,8 +73,8 @@ TEST(CutBlend, ModelWithABlendedCutSolvesAndCutNodesFollowTheMeanTransform) {
   Scene s = makeBlockScene(Eigen::Vector3i(12, 4, 2));
   std::vector<int> bottom = s.fragments[0].nodes;
   bottom.insert(bottom.end(), s.fragments[1].nodes.begin(), s.fragments[1].nodes.end());
-  const CutCoupling c = splitBondedNodes(s.mesh.rest, bottom, {Eigen::Vector3d(30, 0, 0), Eigen::Vector3d::UnitX()},
-                                         0, 1);
+  const CutCoupling c =
+      splitBondedNodes(s.mesh.rest, bottom, {Eigen::Vector3d(30, 0, 0), Eigen::Vector3d::UnitX()}, 0, 1);
   ASSERT_EQ(c.blended.size(), 15u);  // x = 25, 30, 35 at y = 0, 10, ..., 40
   s.fragments[0].nodes = c.nodesA;
   s.fragments[1].nodes = c.nodesB;

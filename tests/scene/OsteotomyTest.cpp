@@ -13,14 +13,22 @@ namespace orthosim {
 namespace {
 
 Landmarks skullLandmarks() {
-  return {{"nasion", {-40, 0, 60}},           {"PNS", {10, 0, 0}},
-          {"upper_incisor_apex", {-35, 0, 5}}, {"upper_incisor_tip", {-40, 0, -18}},
-          {"upper_canine_left", {-32, -16, -14}}, {"upper_canine_right", {-32, 16, -14}},
-          {"upper_molar_left", {-5, -25, -12}},   {"upper_molar_right", {-5, 25, -12}},
-          {"lower_canine_left", {-30, -14, -20}}, {"lower_canine_right", {-30, 14, -20}},
-          {"lower_molar_left", {-5, -23, -20}},   {"lower_molar_right", {-5, 23, -20}},
-          {"gonion_left", {35, -45, -50}},        {"gonion_right", {35, 45, -50}},
-          {"mental_foramen_left", {-25, -22, -40}}, {"mental_foramen_right", {-25, 22, -40}}};
+  return {{"nasion", {-40, 0, 60}},
+          {"PNS", {10, 0, 0}},
+          {"upper_incisor_apex", {-35, 0, 5}},
+          {"upper_incisor_tip", {-40, 0, -18}},
+          {"upper_canine_left", {-32, -16, -14}},
+          {"upper_canine_right", {-32, 16, -14}},
+          {"upper_molar_left", {-5, -25, -12}},
+          {"upper_molar_right", {-5, 25, -12}},
+          {"lower_canine_left", {-30, -14, -20}},
+          {"lower_canine_right", {-30, 14, -20}},
+          {"lower_molar_left", {-5, -23, -20}},
+          {"lower_molar_right", {-5, 23, -20}},
+          {"gonion_left", {35, -45, -50}},
+          {"gonion_right", {35, 45, -50}},
+          {"mental_foramen_left", {-25, -22, -40}},
+          {"mental_foramen_right", {-25, 22, -40}}};
 }
 
 const FragmentRegion* regionAt(const std::vector<FragmentRegion>& regions, const Eigen::Vector3d& x) {
@@ -36,13 +44,13 @@ TEST(Osteotomy, LeFortOneTakesTheToothBearingMaxillaBelowTheApicesAndInFrontOfTh
   ASSERT_EQ(regions.size(), 1u);
   EXPECT_EQ(regions[0].name, "maxilla");
   EXPECT_EQ(regions[0].parent, "skull");
-  EXPECT_TRUE(regions[0].contains({-40, 0, -18}));   // incisor tip
-  EXPECT_TRUE(regions[0].contains({-35, 0, 8.9}));   // just under the cut, 4 mm above the apex
-  EXPECT_FALSE(regions[0].contains({-35, 0, 9.1}));  // just above it
-  EXPECT_FALSE(regions[0].contains({-40, 0, 60}));   // nasion
-  EXPECT_FALSE(regions[0].contains({20, 0, -10}));   // behind the pterygomaxillary junction
-  EXPECT_TRUE(regions[0].contains({-5, -44, -12}));  // 19 mm outside the left molar: lateral wall
-  EXPECT_FALSE(regions[0].contains({-5, -46, -12})); // 21 mm outside: beyond the fragment's limit
+  EXPECT_TRUE(regions[0].contains({-40, 0, -18}));    // incisor tip
+  EXPECT_TRUE(regions[0].contains({-35, 0, 8.9}));    // just under the cut, 4 mm above the apex
+  EXPECT_FALSE(regions[0].contains({-35, 0, 9.1}));   // just above it
+  EXPECT_FALSE(regions[0].contains({-40, 0, 60}));    // nasion
+  EXPECT_FALSE(regions[0].contains({20, 0, -10}));    // behind the pterygomaxillary junction
+  EXPECT_TRUE(regions[0].contains({-5, -44, -12}));   // 19 mm outside the left molar: lateral wall
+  EXPECT_FALSE(regions[0].contains({-5, -46, -12}));  // 21 mm outside: beyond the fragment's limit
   cut.offset = 10;
   EXPECT_TRUE(osteotomyRegions(cut, skullLandmarks())[0].contains({-35, 0, 14}));
 }
@@ -66,11 +74,11 @@ TEST(Osteotomy, SegmentedMaxillaMakesThreePiecesThatPartitionTheLeFortOneLevel) 
 TEST(Osteotomy, LeFortTwoIsPyramidalAndIncludesTheNasalBones) {
   const auto regions = osteotomyRegions({"le_fort_2", "skull"}, skullLandmarks());
   ASSERT_EQ(regions.size(), 1u);
-  EXPECT_TRUE(regions[0].contains({-40, 0, 45}));    // nasal bones, below the apex 8 mm under nasion
-  EXPECT_FALSE(regions[0].contains({-40, 0, 55}));   // above it
-  EXPECT_FALSE(regions[0].contains({-30, -45, 40})); // lateral orbit rim: outside the pyramid
-  EXPECT_TRUE(regions[0].contains({-30, -32, -10})); // low and lateral: maxilla
-  EXPECT_FALSE(regions[0].contains({-30, -40, -10})); // beyond 12 mm outside the molars: zygoma
+  EXPECT_TRUE(regions[0].contains({-40, 0, 45}));      // nasal bones, below the apex 8 mm under nasion
+  EXPECT_FALSE(regions[0].contains({-40, 0, 55}));     // above it
+  EXPECT_FALSE(regions[0].contains({-30, -45, 40}));   // lateral orbit rim: outside the pyramid
+  EXPECT_TRUE(regions[0].contains({-30, -32, -10}));   // low and lateral: maxilla
+  EXPECT_FALSE(regions[0].contains({-30, -40, -10}));  // beyond 12 mm outside the molars: zygoma
   const auto lf1 = osteotomyRegions({"le_fort_1", "skull"}, skullLandmarks());
   EXPECT_FALSE(lf1[0].contains({-40, 0, 45}));
 }
@@ -80,7 +88,7 @@ TEST(Osteotomy, SagittalSplitsSeparateTheCondyleBearingRami) {
   ASSERT_EQ(both.size(), 2u);
   EXPECT_EQ(regionAt(both, {35, -45, -50})->name, "ramus_left");
   EXPECT_EQ(regionAt(both, {35, 45, -50})->name, "ramus_right");
-  EXPECT_EQ(regionAt(both, {-30, 0, -45}), nullptr);  // the chin stays with the tooth-bearing segment
+  EXPECT_EQ(regionAt(both, {-30, 0, -45}), nullptr);    // the chin stays with the tooth-bearing segment
   EXPECT_EQ(regionAt(both, {-10, -23, -30}), nullptr);  // below the first molar: distal segment
   OsteotomySpec one{"usso", "mandible"};
   one.side = "right";
@@ -96,9 +104,9 @@ TEST(Osteotomy, GenioplastyTakesTheChinBelowTheMentalForamina) {
   const auto regions = osteotomyRegions({"genioplasty", "mandible"}, skullLandmarks());
   ASSERT_EQ(regions.size(), 1u);
   EXPECT_EQ(regions[0].name, "chin");
-  EXPECT_TRUE(regions[0].contains({-32, 0, -60}));   // menton region
-  EXPECT_FALSE(regions[0].contains({-32, 0, -40}));  // at the foramina level
-  EXPECT_FALSE(regions[0].contains({30, -40, -60})); // angle of the mandible
+  EXPECT_TRUE(regions[0].contains({-32, 0, -60}));    // menton region
+  EXPECT_FALSE(regions[0].contains({-32, 0, -40}));   // at the foramina level
+  EXPECT_FALSE(regions[0].contains({30, -40, -60}));  // angle of the mandible
 }
 
 TEST(Osteotomy, ErrorsNameTheMissingLandmarkAndTheUnknownTemplate) {

@@ -8,11 +8,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include "contact/RigidSurface.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseModel.hpp"
-#include "contact/RigidSurface.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace fs = std::filesystem;
@@ -202,7 +202,8 @@ TEST_F(PhantomCase, CoarseAndFineAgreeWithinOneMillimetreOnNinetyFivePercentOfTh
   }
   const double share = within / area.sum();
   std::cout << "coarse " << coarse().tissue.skinTriangles << " vs fine " << fine.tissue.skinTriangles
-            << " skin triangles: " << 100 * share << "% of the skin within 1 mm; largest skin motion " << maxMoved << " mm\n";
+            << " skin triangles: " << 100 * share << "% of the skin within 1 mm; largest skin motion " << maxMoved
+            << " mm\n";
   EXPECT_GT(maxMoved, 3.0);  // the plan really moved the face
   EXPECT_GE(share, 0.95);
 }

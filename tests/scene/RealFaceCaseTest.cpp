@@ -6,8 +6,8 @@
 // setback move the face as published ratios say. Skipped without ../shared.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <unistd.h>
+#include <algorithm>
 
 #include <filesystem>
 #include <fstream>
@@ -56,7 +56,8 @@ TEST_F(RealFaceCase, DerivesTheMaxillaGroupFromTheDeepSurfaceAndReportsIt) {
   ASSERT_EQ(m.tissue.boneNodes.size(), 2u);
   // The skull's 954 nodes plus those derived near the maxilla (none taken from the mandible's set).
   const std::vector<int>& midface = m.tissue.boneNodes[0];
-  const std::vector<int> skull = readNodeSet((kFace / "fixed_to_skull.txt").string(), m.tissue.mesh.numNodes(), "skull");
+  const std::vector<int> skull =
+      readNodeSet((kFace / "fixed_to_skull.txt").string(), m.tissue.mesh.numNodes(), "skull");
   EXPECT_GT(midface.size(), skull.size() + 50);
   std::vector<char> mandible(m.tissue.mesh.numNodes(), 0), inSkull(m.tissue.mesh.numNodes(), 0);
   for (int i : m.tissue.boneNodes[1]) mandible[i] = 1;
@@ -69,7 +70,8 @@ TEST_F(RealFaceCase, DerivesTheMaxillaGroupFromTheDeepSurfaceAndReportsIt) {
   // The report says how many and how far, and every derived node is within the bound.
   bool reported = false;
   for (const auto& line : m.tissue.report)
-    reported = reported || (line.find("midface: ") == 0 && line.find("candidate nodes within 2 mm") != std::string::npos);
+    reported =
+        reported || (line.find("midface: ") == 0 && line.find("candidate nodes within 2 mm") != std::string::npos);
   EXPECT_TRUE(reported);
   const SurfaceMesh bone = importSurface((kFace / "maxilla.obj").string());
   Eigen::Matrix3Xd pts(3, derived.size());
@@ -91,7 +93,8 @@ TEST_F(RealFaceCase, DerivesTheMaxillaGroupFromTheDeepSurfaceAndReportsIt) {
   // boundary nodes within 15 mm (the lips' inner and outer surfaces among them).
   std::vector<std::string> carriers;
   for (const ContactSpec& c : m.scene.contacts) {
-    std::cout << "contact " << c.name << ": " << c.nodes.size() << " nodes, " << c.surface.numTriangles() << " triangles\n";
+    std::cout << "contact " << c.name << ": " << c.nodes.size() << " nodes, " << c.surface.numTriangles()
+              << " triangles\n";
     carriers.push_back(c.fragment);
     for (int n : c.nodes) EXPECT_FALSE(bonded[n]) << "node " << n;
   }
@@ -101,7 +104,8 @@ TEST_F(RealFaceCase, DerivesTheMaxillaGroupFromTheDeepSurfaceAndReportsIt) {
 
 TEST_F(RealFaceCase, LeFortOneAdvancementMovesTheUpperLipAndLittleElse) {
   const double advance = 5.0;  // mm toward -x (anterior)
-  const CaseModel m = buildCaseModel(writeCase({{"maxilla", {{"translation_mm", {-advance, 0, 0}}}}}), Resolution::Coarse);
+  const CaseModel m =
+      buildCaseModel(writeCase({{"maxilla", {{"translation_mm", {-advance, 0, 0}}}}}), Resolution::Coarse);
   Model model(m.scene);
   const SolveResult r = solveScene(model);
   ASSERT_TRUE(r.converged) << r.error;
@@ -127,7 +131,8 @@ TEST_F(RealFaceCase, LeFortOneAdvancementMovesTheUpperLipAndLittleElse) {
 
 TEST_F(RealFaceCase, MandibularSetbackMovesTheChinWithTheBone) {
   const double setback = 5.0;  // mm toward +x (posterior)
-  const CaseModel m = buildCaseModel(writeCase({{"mandible", {{"translation_mm", {setback, 0, 0}}}}}), Resolution::Coarse);
+  const CaseModel m =
+      buildCaseModel(writeCase({{"mandible", {{"translation_mm", {setback, 0, 0}}}}}), Resolution::Coarse);
   Model model(m.scene);
   const SolveResult r = solveScene(model);
   ASSERT_TRUE(r.converged) << r.error;

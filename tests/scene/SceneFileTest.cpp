@@ -94,9 +94,14 @@ class SceneFileTest : public ::testing::Test {
     return json{
         {"units", "mm"},
         {"tissue",
-         {{"node", "box.node"}, {"ele", "box.ele"}, {"material", {{"youngs_modulus_kpa", 3.0}, {"poisson_ratio", 0.45}}}}},
-        {"fragments", json::array({{{"name", "upper"}, {"nodes", "upper.txt"}}, {{"name", "lower"}, {"nodes", "lower.txt"}}})},
-        {"plan", {{"lower", {{"translation_mm", {1.0, 0.0, 0.5}}, {"rotation_deg", {0.0, 0.0, 5.0}}, {"center_mm", {20.0, 5.0, 5.0}}}}}},
+         {{"node", "box.node"},
+          {"ele", "box.ele"},
+          {"material", {{"youngs_modulus_kpa", 3.0}, {"poisson_ratio", 0.45}}}}},
+        {"fragments",
+         json::array({{{"name", "upper"}, {"nodes", "upper.txt"}}, {{"name", "lower"}, {"nodes", "lower.txt"}}})},
+        {"plan",
+         {{"lower",
+           {{"translation_mm", {1.0, 0.0, 0.5}}, {"rotation_deg", {0.0, 0.0, 5.0}}, {"center_mm", {20.0, 5.0, 5.0}}}}}},
     };
   }
   std::string writeScene(const json& scene) const { return writeSceneText(scene.dump(2)); }
@@ -187,7 +192,10 @@ TEST_F(SceneFileTest, ContactPairsAreReadAndTheirDefectsNamed) {
   exportSurface(plate, path("plate.stl").string());
   write("top.txt", "1 3 5 7 9 11\n");
   json s = baseScene();
-  s["contact"] = json::array({{{"name", "plate"}, {"nodes", "top.txt"}, {"surface", "plate.stl"}, {"fragment", "lower"},
+  s["contact"] = json::array({{{"name", "plate"},
+                               {"nodes", "top.txt"},
+                               {"surface", "plate.stl"},
+                               {"fragment", "lower"},
                                {"stiffness_n_per_mm", 2.5}}});
   const Scene scene = loadSceneFile(writeScene(s));
   ASSERT_EQ(scene.contacts.size(), 1u);
@@ -416,11 +424,16 @@ TEST_F(SceneFileTest, ValidSceneRoundTrips) {
   json s = baseScene();
   s["tissue"]["material"]["model"] = "neo-hookean";
   s["fragments"][1]["free"] = false;
-  s["fixed"] = json::array({{{"nodes", "fixed.txt"}, {"components", "z"}}, {{"nodes", "pulled.txt"}, {"displacement_mm", {0.0, 0.25, 0.0}}}});
+  s["fixed"] = json::array({{{"nodes", "fixed.txt"}, {"components", "z"}},
+                            {{"nodes", "pulled.txt"}, {"displacement_mm", {0.0, 0.25, 0.0}}}});
   s["blended"] = {{"weights", "weights.txt"}};
   s["plan"]["upper"] = json::object();  // listed without motion: stays at rest
-  s["solver"] = {{"substeps", 2}, {"max_iterations", 40}, {"max_refinements", 5}, {"force_tolerance_n", 1e-7},
-                 {"step_tolerance_mm", 1e-6}, {"hessian", "projected"}};
+  s["solver"] = {{"substeps", 2},
+                 {"max_iterations", 40},
+                 {"max_refinements", 5},
+                 {"force_tolerance_n", 1e-7},
+                 {"step_tolerance_mm", 1e-6},
+                 {"hessian", "projected"}};
   write("fixed.txt", "4\n");
   write("pulled.txt", "7\n");
   write("weights.txt", "5 upper 0.25 lower 0.75\n");
@@ -478,9 +491,9 @@ TEST_F(SceneFileTest, ValidSceneRoundTrips) {
   const Eigen::Vector3d X(20.0, 10.0, 0.0), c(20.0, 5.0, 5.0);
   const double a = 5.0 * kPi / 180.0;
   const Eigen::Vector3d d = X - c;
-  const Eigen::Vector3d expected = c + Eigen::Vector3d(1.0, 0.0, 0.5) +
-                                   Eigen::Vector3d(std::cos(a) * d.x() - std::sin(a) * d.y(),
-                                                   std::sin(a) * d.x() + std::cos(a) * d.y(), d.z());
+  const Eigen::Vector3d expected =
+      c + Eigen::Vector3d(1.0, 0.0, 0.5) +
+      Eigen::Vector3d(std::cos(a) * d.x() - std::sin(a) * d.y(), std::sin(a) * d.x() + std::cos(a) * d.y(), d.z());
   EXPECT_LT((pose.apply(X) - expected).norm(), 1e-12);
 }
 

@@ -102,8 +102,8 @@ TEST_F(PlanningErrors, NonFiniteAndNonNumericValues) {
 
 TEST_F(PlanningErrors, ARefusedPoseChangesNothing) {
   ws_->request({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 1}}}}}, {"preview", false}});
-  errorFor(json{{"type", "set_poses"},
-                {"poses", {{"maxilla", {{"anterior_mm", 2}}}, {"mandible", {{"anterior_mm", 99}}}}}});
+  errorFor(
+      json{{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 2}}}, {"mandible", {{"anterior_mm", 99}}}}}});
   const json c = ws_->request({{"type", "describe"}});
   for (const json& f : c["fragments"])
     if (f["name"] == "maxilla") EXPECT_EQ(f["pose"]["anterior_mm"], 1.0) << "all or nothing";

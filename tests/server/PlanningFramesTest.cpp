@@ -47,7 +47,8 @@ TEST_F(PlanningFrames, AFrameAfterOpeningAndAfterEachPreview) {
 TEST_F(PlanningFrames, ViewChangesDrawNewFrames) {
   nextFrame(*ws_);
   const std::string frontal = ws_->lastBinary();
-  ws_->send({{"type", "view"}, {"preset", "profile"}, {"size", {400, 300}}, {"colormap", "displacement"}, {"bones", true}});
+  ws_->send(
+      {{"type", "view"}, {"preset", "profile"}, {"size", {400, 300}}, {"colormap", "displacement"}, {"bones", true}});
   const json f = nextFrame(*ws_);
   EXPECT_EQ(f["view"], "profile");
   EXPECT_EQ(f["colormap"], "displacement");

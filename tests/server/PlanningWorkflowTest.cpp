@@ -3,8 +3,8 @@
 // reconnect and reload a saved plan; a burst of pose updates.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
 #include <cstring>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <thread>
 
@@ -45,7 +45,8 @@ TEST(PlanningWorkflow, CoarsePreviewThenFineConfirmThenExport) {
   for (const json& f : opened["fragments"]) fragments.push_back(f["name"]);
   EXPECT_NE(std::find(fragments.begin(), fragments.end(), "maxilla"), fragments.end()) << opened.dump();
   EXPECT_NE(std::find(fragments.begin(), fragments.end(), "mandible"), fragments.end());
-  EXPECT_EQ(std::find(fragments.begin(), fragments.end(), "skull"), fragments.end()) << "the fixed skull is not movable";
+  EXPECT_EQ(std::find(fragments.begin(), fragments.end(), "skull"), fragments.end())
+      << "the fixed skull is not movable";
   EXPECT_EQ(opened["cuts"][0]["kind"], "le_fort_1");
   EXPECT_EQ(opened["templates"].size(), 6u);
   EXPECT_GT(opened["coarse"]["tetrahedra"].get<int>(), 1000);
@@ -136,7 +137,8 @@ TEST(PlanningWorkflow, TwoSessionsAtOnceKeepTheirOwnPoses) {
   const double la = pa["figures"]["landmarks"]["labrale_superius"]["anterior_mm"];
   const double lb = pb["figures"]["landmarks"]["labrale_superius"]["anterior_mm"];
   EXPECT_GT(lb, 2.0 * la) << "6 mm moves the lip about three times as far as 2 mm";
-  EXPECT_EQ(a.request({{"type", "describe"}})["fragments"][0]["pose"], b.request({{"type", "describe"}})["fragments"][0]["pose"])
+  EXPECT_EQ(a.request({{"type", "describe"}})["fragments"][0]["pose"],
+            b.request({{"type", "describe"}})["fragments"][0]["pose"])
       << "fragments[0] is the skull's rest or another unmoved fragment in both";
 }
 
@@ -148,8 +150,9 @@ TEST(PlanningWorkflow, ReconnectAndReloadASavedPlan) {
     test::WsTestClient ws(server.port());
     openPhantom(ws);
     ws.send({{"type", "set_poses"},
-             {"poses", {{"maxilla", {{"anterior_mm", 3}, {"superior_mm", 1.5}, {"yaw_deg", 2}}},
-                        {"mandible", {{"anterior_mm", -2}}}}}});
+             {"poses",
+              {{"maxilla", {{"anterior_mm", 3}, {"superior_mm", 1.5}, {"yaw_deg", 2}}},
+               {"mandible", {{"anterior_mm", -2}}}}}});
     before = ws.waitFor("preview");
     ASSERT_TRUE(before["figures"]["converged"].get<bool>());
     const json saved = ws.request({{"type", "save_plan"}, {"name", name}});
@@ -186,9 +189,9 @@ TEST(PlanningWorkflow, ABurstOfPoseUpdatesEndsWithThePreviewOfTheLastPose) {
     ws.send(update);
   }
   const auto deadline = std::chrono::steady_clock::now() + 120s;
-  const json last = ws.waitFor(
-      [&](const json& m) { return m.value("type", "") == "preview" && m.value("id", json()) == burstId(n); },
-      test::timeLeft(deadline));
+  const json last =
+      ws.waitFor([&](const json& m) { return m.value("type", "") == "preview" && m.value("id", json()) == burstId(n); },
+                 test::timeLeft(deadline));
   // A request answered after that preview: everything the server sent before it has arrived.
   EXPECT_EQ(ws.request({{"type", "describe"}})["type"], "case");
   int acknowledged = 0, previews = 0, lastPreviewed = 0;

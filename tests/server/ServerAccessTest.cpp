@@ -8,10 +8,10 @@
 #include <thread>
 
 #include "HttpTestClient.hpp"
-#include "phantom/PhantomCase.hpp"
 #include "ServerProcess.hpp"
 #include "TestWait.hpp"
 #include "WsTestClient.hpp"
+#include "phantom/PhantomCase.hpp"
 
 namespace orthosim {
 namespace {
@@ -26,8 +26,7 @@ std::vector<std::string> ownDataFolder(const std::string& name, std::vector<std:
 }
 
 std::string get(unsigned short port, const std::string& target, const std::string& headers) {
-  const auto replies =
-      test::httpRaw(port, "GET " + target + " HTTP/1.1\r\n" + headers + "Connection: close\r\n\r\n");
+  const auto replies = test::httpRaw(port, "GET " + target + " HTTP/1.1\r\n" + headers + "Connection: close\r\n\r\n");
   return replies.empty() ? "" : std::to_string(replies[0].result_int()) + " " + replies[0].body();
 }
 

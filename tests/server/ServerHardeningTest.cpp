@@ -21,11 +21,11 @@
 #include <thread>
 #include <vector>
 
-#include "HttpTestClient.hpp"
-#include "TestWait.hpp"
-#include "ServerProcess.hpp"
-#include "WsTestClient.hpp"
 #include <nlohmann/json.hpp>
+#include "HttpTestClient.hpp"
+#include "ServerProcess.hpp"
+#include "TestWait.hpp"
+#include "WsTestClient.hpp"
 
 namespace orthosim {
 namespace {
@@ -49,8 +49,7 @@ CommandResult runCli(const std::string& args) {
 }
 
 int status(unsigned short port, const std::string& target, const std::string& headers) {
-  const auto replies =
-      test::httpRaw(port, "GET " + target + " HTTP/1.1\r\n" + headers + "Connection: close\r\n\r\n");
+  const auto replies = test::httpRaw(port, "GET " + target + " HTTP/1.1\r\n" + headers + "Connection: close\r\n\r\n");
   return replies.empty() ? 0 : replies[0].result_int();
 }
 
@@ -69,8 +68,7 @@ fs::path scratch(const std::string& name) {
 }
 
 TEST(ServerHardening, EveryInterfaceWithoutATokenDoesNotStart) {
-  const CommandResult r =
-      runCli("serve --host 0.0.0.0 --port 0 --no-warm-up --data " + test::testDataDir());
+  const CommandResult r = runCli("serve --host 0.0.0.0 --port 0 --no-warm-up --data " + test::testDataDir());
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("every network interface"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("--token"), std::string::npos) << r.output;
@@ -115,8 +113,8 @@ TEST(ServerHardening, TokenFileIsMadeOnceAndThenRequired) {
 TEST(ServerHardening, ThePageCannotBeFramed) {
   test::ServerProcess server;
   for (const char* target : {"/", "/index.html", "/api/health", "/no-such-file"}) {
-    const auto replies = test::httpRaw(server.port(), std::string("GET ") + target +
-                                                          " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
+    const auto replies = test::httpRaw(
+        server.port(), std::string("GET ") + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
     ASSERT_FALSE(replies.empty()) << target;
     EXPECT_EQ(replies[0][boost::beast::http::field::x_frame_options], "DENY") << target;
     EXPECT_EQ(replies[0]["Content-Security-Policy"], "frame-ancestors 'none'") << target;
@@ -240,18 +238,17 @@ TEST(ServerHardening, APreviewOverItsBudgetIsRefusedAndTheLastGoodKept) {
   ws.request(pose({{"anterior_mm", 1.0}}));
   const nlohmann::json good = ws.waitFor("preview", 300s);
   ws.request(pose({{"pitch_deg", 30}, {"roll_deg", -30}, {"yaw_deg", 30}}));
-  const nlohmann::json refused = ws.waitFor([](const nlohmann::json& m) {
-    return m["type"] == "preview_failed" || m["type"] == "preview";
-  }, 300s);
+  const nlohmann::json refused =
+      ws.waitFor([](const nlohmann::json& m) { return m["type"] == "preview_failed" || m["type"] == "preview"; }, 300s);
   ASSERT_EQ(refused["type"], "preview_failed") << refused.dump();
   const std::string message = refused["message"];
   EXPECT_NE(message.find("may spend 8 iterations"), std::string::npos) << message;
   EXPECT_NE(message.find("last good preview is kept"), std::string::npos) << message;
   // The session goes on from the last good state.
   ws.request(pose({{"anterior_mm", 1.5}}));
-  EXPECT_EQ(ws.waitFor([](const nlohmann::json& m) {
-    return m["type"] == "preview_failed" || m["type"] == "preview";
-  }, 300s)["type"], "preview");
+  EXPECT_EQ(ws.waitFor([](const nlohmann::json& m) { return m["type"] == "preview_failed" || m["type"] == "preview"; },
+                       300s)["type"],
+            "preview");
 }
 
 // Two sessions dragging to poses the tissue cannot follow held both preview threads for minutes
@@ -302,8 +299,8 @@ TEST(ServerHardening, MemoryIsReturnedWhenSessionsClose) {
         return after < peak * 65 / 100;
       },
       20s);
-  std::cout << "resident: " << peak / 1024 << " MB with a session open, " << after / 1024
-            << " MB after all closed" << std::endl;
+  std::cout << "resident: " << peak / 1024 << " MB with a session open, " << after / 1024 << " MB after all closed"
+            << std::endl;
   EXPECT_TRUE(dropped) << "peak " << peak << " KiB, after closing " << after << " KiB";
 }
 
@@ -319,7 +316,6 @@ long cpuTicks(pid_t pid) {
   }
   return utime + stime;
 }
-
 
 // With its descriptors used up, the server used to retry accept() at once, forever: a core at
 // 100% and millions of log lines. Now it backs off, logs once per interval, and answers again

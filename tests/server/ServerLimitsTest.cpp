@@ -14,9 +14,8 @@ namespace {
 TEST(ServerLimits, OversizedBodyIs413) {
   test::ServerProcess server;
   // The declared length alone exceeds the 64 KiB limit: refused before any body is read.
-  const auto replies = test::httpRaw(server.port(),
-                                     "POST /api/health HTTP/1.1\r\nHost: x\r\nContent-Length: 100000\r\n\r\n" +
-                                         std::string(1000, 'x'));
+  const auto replies = test::httpRaw(
+      server.port(), "POST /api/health HTTP/1.1\r\nHost: x\r\nContent-Length: 100000\r\n\r\n" + std::string(1000, 'x'));
   ASSERT_EQ(replies.size(), 1u);
   EXPECT_EQ(replies[0].result(), http::status::payload_too_large);
   EXPECT_EQ(nlohmann::json::parse(replies[0].body())["error"], "body_too_large");

@@ -6,9 +6,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <stdexcept>
-#include <algorithm>
 #include <thread>
 
 extern char** environ;
@@ -46,7 +46,8 @@ ServerProcess::ServerProcess(const std::vector<std::string>& extraArgs, const st
   // Read the first line, waiting at most 30 s in total.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   while (line_.find('\n') == std::string::npos) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     pollfd p{stdoutFd_, POLLIN, 0};
     if (left.count() <= 0 || ::poll(&p, 1, static_cast<int>(left.count())) <= 0) break;
     char chunk[256];

@@ -40,10 +40,12 @@ TEST(ServerStaticFiles, ContentTypesFollowTheExtension) {
   folder.write("img/skin.jpg", "\xff\xd8\xff");
   folder.write("data/case.json", "{}");
   test::ServerProcess server({"--web", folder.web.string()});
-  const std::pair<const char*, const char*> expected[] = {
-      {"/index.html", "text/html; charset=utf-8"}, {"/js/app.js", "text/javascript; charset=utf-8"},
-      {"/css/page.css", "text/css; charset=utf-8"}, {"/img/skin.png", "image/png"},
-      {"/img/skin.jpg", "image/jpeg"},              {"/data/case.json", "application/json"}};
+  const std::pair<const char*, const char*> expected[] = {{"/index.html", "text/html; charset=utf-8"},
+                                                          {"/js/app.js", "text/javascript; charset=utf-8"},
+                                                          {"/css/page.css", "text/css; charset=utf-8"},
+                                                          {"/img/skin.png", "image/png"},
+                                                          {"/img/skin.jpg", "image/jpeg"},
+                                                          {"/data/case.json", "application/json"}};
   for (const auto& [target, type] : expected) {
     const test::HttpReply reply = httpGet(server.port(), target);
     EXPECT_EQ(reply.result(), http::status::ok) << target;
@@ -64,8 +66,8 @@ TEST(ServerStaticFiles, TraversalIsRefused) {
   for (const std::string& target :
        {std::string("/../secret.txt"), std::string("/%2e%2e/secret.txt"), std::string("/%2E%2E%2Fsecret.txt"),
         std::string("/..%2fsecret.txt"), std::string("/x/../../secret.txt"), std::string("/..\\secret.txt"),
-        "/" + secretPath, "//" + secretPath, std::string("/link.txt"), std::string("/%00"),
-        std::string("/etc/passwd"), "http://127.0.0.1" + secretPath}) {
+        "/" + secretPath, "//" + secretPath, std::string("/link.txt"), std::string("/%00"), std::string("/etc/passwd"),
+        "http://127.0.0.1" + secretPath}) {
     const test::HttpReply reply = httpGet(server.port(), target);
     EXPECT_TRUE(reply.result() == http::status::not_found || reply.result() == http::status::bad_request)
         << target << " -> " << reply.result_int();
@@ -78,7 +80,8 @@ TEST(ServerStaticFiles, TraversalIsRefused) {
 }
 
 TEST(ServerStaticFiles, MissingWebFolderStopsTheServerFromStarting) {
-  const std::string command = std::string(ORTHOSIM_CLI) + " serve --port 0 --web /nonexistent/orthosim-web >/dev/null 2>&1";
+  const std::string command =
+      std::string(ORTHOSIM_CLI) + " serve --port 0 --web /nonexistent/orthosim-web >/dev/null 2>&1";
   EXPECT_EQ(WEXITSTATUS(std::system(command.c_str())), 1);
 }
 

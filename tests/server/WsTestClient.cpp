@@ -99,7 +99,8 @@ nlohmann::json WsTestClient::waitFor(const std::function<bool(const nlohmann::js
                                      std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) throw std::runtime_error("the expected message did not come in time");
     nlohmann::json m = next(left);
     if (match(m)) return m;

@@ -9,7 +9,8 @@ namespace {
 
 AnatomicalFrame phantomFrame() { return {}; }  // +x posterior, +y right, +z superior
 
-Eigen::Vector3d move(const AnatomicalPose& p, const Eigen::Vector3d& X, const Eigen::Vector3d& pivot = Eigen::Vector3d::Zero()) {
+Eigen::Vector3d move(const AnatomicalPose& p, const Eigen::Vector3d& X,
+                     const Eigen::Vector3d& pivot = Eigen::Vector3d::Zero()) {
   return motionFromPose(p, phantomFrame(), pivot).pose().apply(X);
 }
 
@@ -50,8 +51,10 @@ TEST(AnatomicalPose, RotationsTurnAboutThePivot) {
   p.yawDeg = -7;
   const Eigen::Vector3d pivot(-60, 3, -40);
   EXPECT_TRUE(move(p, pivot, pivot).isApprox(pivot, 1e-12));
-  EXPECT_TRUE(motionFromPose(AnatomicalPose{}, phantomFrame(), pivot).pose().apply(Eigen::Vector3d(1, 2, 3)).isApprox(
-      Eigen::Vector3d(1, 2, 3)));
+  EXPECT_TRUE(motionFromPose(AnatomicalPose{}, phantomFrame(), pivot)
+                  .pose()
+                  .apply(Eigen::Vector3d(1, 2, 3))
+                  .isApprox(Eigen::Vector3d(1, 2, 3)));
 }
 
 TEST(AnatomicalPose, AnotherFrameIsFollowed) {

@@ -36,8 +36,8 @@ TEST(JobQueue, PassesEachJobItsIdWhenRunOrDropped) {
   ASSERT_EQ(ran.wait_for(10s), std::future_status::ready) << "the first job never started";
   EXPECT_EQ(ran.get(), *first);
 
-  const auto second = jobs.submit("s1", [](long long, const std::atomic<bool>&) {},
-                                  [&](long long id) { droppedAs.set_value(id); });
+  const auto second = jobs.submit(
+      "s1", [](long long, const std::atomic<bool>&) {}, [&](long long id) { droppedAs.set_value(id); });
   ASSERT_TRUE(second);
   EXPECT_NE(*second, *first);
   ASSERT_TRUE(jobs.cancel("s1", *second));

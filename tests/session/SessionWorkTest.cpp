@@ -41,7 +41,11 @@ TEST(SerialWork, TheNewestSupersedableTaskWins) {
   work.submit(slowTask(started, cancelled), true);
   ASSERT_TRUE(waitUntil([&] { return started > 0; }, kDeadline)) << "the first task never started";
   for (int i = 1; i <= 10; ++i)
-    work.submit([&, i](const std::atomic<bool>& cancel) { if (!cancel) lastRan = i; }, true);
+    work.submit(
+        [&, i](const std::atomic<bool>& cancel) {
+          if (!cancel) lastRan = i;
+        },
+        true);
   ASSERT_TRUE(waitUntil([&] { return work.idle(); }, kDeadline)) << "the work never became idle";
   EXPECT_EQ(cancelled, 1) << "the running preview was cancelled";
   EXPECT_EQ(lastRan, 10);
@@ -54,7 +58,12 @@ TEST(SerialWork, OtherTasksRunInOrderAndAreNeverDropped) {
   boost::asio::thread_pool pool(2);
   SerialWork work(pool);
   for (int i = 0; i < 5; ++i) {
-    work.submit([&, i](const std::atomic<bool>&) { std::lock_guard<std::mutex> l(m); order.push_back(i); }, false);
+    work.submit(
+        [&, i](const std::atomic<bool>&) {
+          std::lock_guard<std::mutex> l(m);
+          order.push_back(i);
+        },
+        false);
     work.submit([](const std::atomic<bool>&) {}, true);
   }
   ASSERT_TRUE(waitUntil([&] { return work.idle(); }, kDeadline)) << "the work never became idle";

@@ -54,8 +54,10 @@ TEST(FebioBlock, ReproducesFebioAtEveryNode) {
   writeZeroBased(kCase / "nodeset_bottomB.txt", dir / "b.txt");
   const nlohmann::json scene = {
       {"units", "mm"},
-      {"tissue", {{"node", (kCase / "mesh.node").string()}, {"ele", (kCase / "mesh.ele").string()},
-                  {"material", {{"model", "neo-hookean"}, {"youngs_modulus_kpa", 100}, {"poisson_ratio", 0.47}}}}},
+      {"tissue",
+       {{"node", (kCase / "mesh.node").string()},
+        {"ele", (kCase / "mesh.ele").string()},
+        {"material", {{"model", "neo-hookean"}, {"youngs_modulus_kpa", 100}, {"poisson_ratio", 0.47}}}}},
       {"fragments", {{{"name", "A"}, {"nodes", "a.txt"}}, {{"name", "B"}, {"nodes", "b.txt"}, {"free", false}}}},
       {"plan", {{"B", {{"translation_mm", {0, 5, 3}}, {"rotation_deg", {0, 0, 5}}, {"center_mm", {45, 20, 0}}}}}},
       {"solver", {{"substeps", 10}}}};

@@ -96,7 +96,8 @@ TEST(PinchedTissue, TheSolveReportsItAmongItsWarnings) {
   ASSERT_TRUE(r.converged) << r.error;
   EXPECT_GT(r.minDetF, 0.0);  // the tissue the solve can move stays valid
   ASSERT_EQ(r.warnings.size(), 1u);
-  EXPECT_NE(r.warnings[0].find("tissue moved only by A and B is crushed by the plan"), std::string::npos) << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("tissue moved only by A and B is crushed by the plan"), std::string::npos)
+      << r.warnings[0];
   // Moving B away instead gives no warning.
   s.plan["B"].translation = {3, 0, 0};
   Model away(s);

@@ -59,12 +59,14 @@ Scene tightlyConverged(Scene s) {
 TEST(PlanSolver, PlanAppliedThenUndoneReturnsToRest) {
   Model model(tightlyConverged(coarseBlock()));
   const SimState rest = model.restState();
-  const SolveResult forward = solvePlan(model, rest, model.targetsFromPlan(model.scene().plan, rest), model.scene().solver);
+  const SolveResult forward =
+      solvePlan(model, rest, model.targetsFromPlan(model.scene().plan, rest), model.scene().solver);
   ASSERT_TRUE(forward.converged) << forward.error;
   EXPECT_GT((forward.state.x - rest.x).cwiseAbs().maxCoeff(), 5.0);
   // Undo: every fragment back to the identity.
   std::map<std::string, FragmentMotion> undo{{"B", FragmentMotion{}}};
-  const SolveResult back = solvePlan(model, forward.state, model.targetsFromPlan(undo, forward.state), model.scene().solver);
+  const SolveResult back =
+      solvePlan(model, forward.state, model.targetsFromPlan(undo, forward.state), model.scene().solver);
   ASSERT_TRUE(back.converged) << back.error;
   EXPECT_LT((back.state.x - rest.x).cwiseAbs().maxCoeff(), 1e-6);
 }
@@ -216,7 +218,7 @@ TEST(PlanSolver, ReportsProgressAndStopsWhenCancelled) {
   EXPECT_NEAR(fractions[0], 0.1, 1e-12);
   EXPECT_NEAR(fractions[2], 0.3, 1e-12);
   EXPECT_NEAR(r.loadFraction, 0.3, 1e-12);  // the last converged state is returned
-  EXPECT_EQ(r.refinements, 0);                // a cancel is not a failure to refine
+  EXPECT_EQ(r.refinements, 0);              // a cancel is not a failure to refine
   EXPECT_GT(model.energy().minDetF(r.state.x), 0.0);
 
   // The same model solves the whole plan afterwards.

@@ -52,9 +52,9 @@ TEST(RealFace, MandibularSetbackMovesTheChinWithTheBoneAndNotTheNose) {
   ASSERT_GE(pogonion, 0);
   const double chin = (r.state.x(0, pogonion) - X(0, pogonion)) / setback;
   const double nose = (r.state.x(0, pronasale) - X(0, pronasale)) / setback;
-  std::cout << "soft pogonion (node " << pogonion << ") follows " << chin << ", pronasale (node " << pronasale
-            << ") " << nose << " of the setback\n";
-  EXPECT_GT(chin, 0.8);   // primer: about 1:1 for setback
+  std::cout << "soft pogonion (node " << pogonion << ") follows " << chin << ", pronasale (node " << pronasale << ") "
+            << nose << " of the setback\n";
+  EXPECT_GT(chin, 0.8);  // primer: about 1:1 for setback
   EXPECT_LT(chin, 1.1);
   EXPECT_LT(std::abs(nose), 0.05);
 }

@@ -22,11 +22,16 @@ Scene mixedScene() {
   FragmentSpec prescribed{"P", {}, false}, floating{"F", {}, true};
   for (int i = 0; i < s.mesh.numNodes(); ++i) {
     const Eigen::Vector3d X = s.mesh.rest.col(i);
-    if (X.x() == 0 && X.z() < 8) wall.nodes.push_back(i);
-    else if (X.x() == 0) rollers.nodes.push_back(i);
-    else if (X.x() == 12 && X.z() == 0) prescribed.nodes.push_back(i);
-    else if (X.z() == 8 && X.x() >= 8) floating.nodes.push_back(i);
-    else if (X.z() == 8 && X.x() == 4 && X.y() == 4) s.blended.push_back({i, {{0, 0.3}, {1, 0.7}}});
+    if (X.x() == 0 && X.z() < 8)
+      wall.nodes.push_back(i);
+    else if (X.x() == 0)
+      rollers.nodes.push_back(i);
+    else if (X.x() == 12 && X.z() == 0)
+      prescribed.nodes.push_back(i);
+    else if (X.z() == 8 && X.x() >= 8)
+      floating.nodes.push_back(i);
+    else if (X.z() == 8 && X.x() == 4 && X.y() == 4)
+      s.blended.push_back({i, {{0, 0.3}, {1, 0.7}}});
   }
   s.fixed = {wall, rollers};
   s.fragments = {prescribed, floating};
@@ -100,8 +105,10 @@ TEST_F(ReducedSystemTest, ReducedHessianMatchesFiniteDifferences) {
       ea[a] = h;
       eb[b] = h;
       const double fd = (energyAt(*model, base, ea + eb) - energyAt(*model, base, ea - eb) -
-                         energyAt(*model, base, eb - ea) + energyAt(*model, base, -ea - eb)) / (4 * h * h);
-      EXPECT_NEAR(H(a, b), fd, 1e-5 * (1 + std::abs(fd)) + 1e-14 * std::abs(e0) / (h * h)) << "entry " << a << ", " << b;
+                         energyAt(*model, base, eb - ea) + energyAt(*model, base, -ea - eb)) /
+                        (4 * h * h);
+      EXPECT_NEAR(H(a, b), fd, 1e-5 * (1 + std::abs(fd)) + 1e-14 * std::abs(e0) / (h * h))
+          << "entry " << a << ", " << b;
     }
 }
 
@@ -125,7 +132,7 @@ TEST_F(ReducedSystemTest, HessianTimesMatchesDenseProduct) {
   // P^T H dx for a move of constrained nodes equals the change of the reduced gradient.
   BoundaryTargets t;
   t.fragments = base.fragments;
-  t.fragments[0] = RigidPose::fromMotion({1e-6, 0, 0}, {0, 1e-6, 0}, {12, 4, 0}) ;
+  t.fragments[0] = RigidPose::fromMotion({1e-6, 0, 0}, {0, 1e-6, 0}, {12, 4, 0});
   t.fragments[0].R = t.fragments[0].R * base.fragments[0].R;
   t.fragments[0].b = RigidPose::fromMotion({1e-6, 0, 0}, {0, 1e-6, 0}, {12, 4, 0}).apply(base.fragments[0].b);
   SimState moved = base;

@@ -47,9 +47,12 @@ TEST_P(UniaxialStretch, MatchesClosedForm) {
     const Eigen::Vector3d X = s.mesh.rest.col(i);
     if (X.x() == L) pulled.nodes.push_back(i);
     if (X.x() != 0) continue;
-    if (X.y() == 0 && X.z() == 0) pin.nodes.push_back(i);
-    else if (X.y() == L && X.z() == 0) noSpin.nodes.push_back(i);
-    else rollers.nodes.push_back(i);
+    if (X.y() == 0 && X.z() == 0)
+      pin.nodes.push_back(i);
+    else if (X.y() == L && X.z() == 0)
+      noSpin.nodes.push_back(i);
+    else
+      rollers.nodes.push_back(i);
   }
   s.fixed = {rollers, pin, noSpin, pulled};
   s.solver.forceTolerance = 1e-12;  // the comparison is at 1e-6: converge well below it

@@ -33,20 +33,21 @@ inline std::string missingFiles(std::initializer_list<std::filesystem::path> fil
 
 // For data the repository ships or the build produces: skips the test saying what is missing,
 // or fails it under CI=true. Returns from the test body like GTEST_SKIP.
-#define SKIP_OR_FAIL_FOR_MISSING_DATA(what)                                                       \
-  do {                                                                                            \
-    if (::orthosim::test::runningInCi()) {                                                        \
-      GTEST_FAIL() << (what) << " (CI=true: data the repository ships or the build produces is "  \
-                                "never skipped there)";                                           \
-    } else {                                                                                      \
-      GTEST_SKIP() << (what);                                                                     \
-    }                                                                                             \
+#define SKIP_OR_FAIL_FOR_MISSING_DATA(what)                                            \
+  do {                                                                                 \
+    if (::orthosim::test::runningInCi()) {                                             \
+      GTEST_FAIL() << (what)                                                           \
+                   << " (CI=true: data the repository ships or the build produces is " \
+                      "never skipped there)";                                          \
+    } else {                                                                           \
+      GTEST_SKIP() << (what);                                                          \
+    }                                                                                  \
   } while (0)
 
 // For data only in ../shared: skips (also under CI=true) when a file is missing, naming each one.
-#define SKIP_WITHOUT_SHARED_DATA(...)                                                                \
-  do {                                                                                               \
-    const std::string orthosimMissing_ = ::orthosim::test::missingFiles({__VA_ARGS__});              \
-    if (!orthosimMissing_.empty())                                                                   \
-      GTEST_SKIP() << "shared data (../shared, not in the repository) " << orthosimMissing_;         \
+#define SKIP_WITHOUT_SHARED_DATA(...)                                                        \
+  do {                                                                                       \
+    const std::string orthosimMissing_ = ::orthosim::test::missingFiles({__VA_ARGS__});      \
+    if (!orthosimMissing_.empty())                                                           \
+      GTEST_SKIP() << "shared data (../shared, not in the repository) " << orthosimMissing_; \
   } while (0)
