@@ -6,23 +6,13 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <random>
 #include <stdexcept>
+
+#include "session/RandomId.hpp"
 
 namespace orthosim::net {
 namespace fs = std::filesystem;
 namespace {
-
-std::string randomToken() {
-  std::random_device device;  // /dev/urandom on Linux
-  static const char* const hex = "0123456789abcdef";
-  std::string token;
-  for (int i = 0; i < 8; ++i) {
-    const unsigned int bits = device();
-    for (int k = 0; k < 8; ++k) token += hex[(bits >> (4 * k)) & 0xf];
-  }
-  return token;
-}
 
 std::runtime_error fileError(const fs::path& file, const std::string& what) {
   return std::runtime_error("token file " + file.string() + ": " + what);
@@ -48,7 +38,7 @@ bool createWith(const fs::path& file, const std::string& token) {
 }  // namespace
 
 std::string loadOrCreateToken(const fs::path& file) {
-  const std::string fresh = randomToken();
+  const std::string fresh = server::randomHexId() + server::randomHexId();  // 256 bits
   if (createWith(file, fresh)) return fresh;
   std::ifstream in(file);
   if (!in) throw fileError(file, "cannot read it");

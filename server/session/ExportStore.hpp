@@ -11,6 +11,8 @@
 #include <optional>
 #include <string>
 
+#include "session/RandomId.hpp"
+
 namespace orthosim::server {
 
 struct ExportedFile {
@@ -44,8 +46,5 @@ class ExportStore {
   std::map<std::string, Owned> owners_;
   std::size_t bytes_ = 0;
 };
-
-// A random 128-bit identifier as 32 lowercase hex digits.
-std::string randomHexId();
 
 }  // namespace orthosim::server

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <sstream>
 
 #include "eval/SkinFigures.hpp"
 #include "render/SurfaceDifference.hpp"
@@ -33,9 +34,6 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 
 json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-}  // namespace
-
-namespace {
 // Hands the freed heap back to the system once a session's case (its Model, factorisations and
 // states: hundreds of MB) is gone; glibc keeps it otherwise (2.4 GB held after 16 sessions).
 struct ReturnFreedMemory {
@@ -453,7 +451,7 @@ void PlanningSession::runPreview(const std::shared_ptr<OpenCase>& c, long long s
                   {"message", "the coarse solve did not converge: " + result.error +
                                   "; the last good preview is kept (a preview may spend " +
                                   std::to_string(budget.previewIterations) + " iterations and " +
-                                  std::to_string(budget.previewTime.count() / 1000.0).substr(0, 4) +
+                                  (std::ostringstream() << budget.previewTime.count() / 1000.0).str() +
                                   " s: move in smaller steps, or confirm on the fine model, which has no such budget)"},
                   {"figures", std::move(figures)}},
                  id);
