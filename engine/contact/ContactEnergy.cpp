@@ -1,5 +1,6 @@
 #include "contact/ContactEnergy.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -9,10 +10,12 @@ namespace orthosim {
 
 ContactEnergy::ContactEnergy(std::vector<ContactPair> pairs) : pairs_(std::move(pairs)), memo_(pairs_.size()) {
   for (size_t k = 0; k < pairs_.size(); ++k) {
-    if (!pairs_[k].surface) throw std::invalid_argument("contact pair " + std::to_string(k) + " has no surface");
+    const std::string where = "contact pair " + std::to_string(k);
+    if (!pairs_[k].surface) throw std::invalid_argument(where + " has no surface");
     if (!(pairs_[k].stiffness > 0) || !std::isfinite(pairs_[k].stiffness))
-      throw std::invalid_argument("contact pair " + std::to_string(k) +
-                                  ": stiffness must be a positive number of N/mm");
+      throw std::invalid_argument(where + ": stiffness must be a positive number of N/mm");
+    if (!(pairs_[k].onset > 0) || !std::isfinite(pairs_[k].onset))
+      throw std::invalid_argument(where + ": the penalty's onset width must be a positive number of mm");
     memo_[k].at.assign(pairs_[k].nodes.size(), Eigen::Vector3d::Zero());
     memo_[k].clearance.assign(pairs_[k].nodes.size(), 0.0);
   }
@@ -32,7 +35,15 @@ std::vector<ActiveContact> ContactEnergy::active(const Eigen::Matrix3Xd& x, cons
       ++queries_;
       memo.at[k] = local;
       memo.clearance[k] = std::max(0.0, hit.distance);
-      if (hit.distance < 0) out.push_back({pair.nodes[k], hit.distance, pose.R * hit.normal, pair.stiffness});
+      if (hit.distance >= 0) continue;
+      ActiveContact c;
+      c.node = pair.nodes[k];
+      c.distance = hit.distance;
+      c.normal = pose.R * hit.normal;
+      c.curvature = pose.R * hit.curvature * pose.R.transpose();
+      c.stiffness = pair.stiffness;
+      c.penalty.onset = pair.onset;
+      out.push_back(c);
     }
   }
   return out;
@@ -40,12 +51,23 @@ std::vector<ActiveContact> ContactEnergy::active(const Eigen::Matrix3Xd& x, cons
 
 double ContactEnergy::energy(const std::vector<ActiveContact>& contacts) const {
   double e = 0;
-  for (const ActiveContact& c : contacts) e += 0.5 * c.stiffness * c.depth * c.depth;
+  for (const ActiveContact& c : contacts) e += c.stiffness * c.penalty.value(c.depth());
   return e;
 }
 
 void ContactEnergy::addGradient(const std::vector<ActiveContact>& contacts, Eigen::Matrix3Xd& g) const {
-  for (const ActiveContact& c : contacts) g.col(c.node) += c.stiffness * c.depth * c.normal;
+  for (const ActiveContact& c : contacts) g.col(c.node) -= c.stiffness * c.penalty.slope(c.depth()) * c.normal;
+}
+
+Eigen::Matrix3d ContactEnergy::hessianBlock(const ActiveContact& c, bool projectToPSD) {
+  // psi(s(x)) with s = -d: grad = -psi' u, Hessian = psi'' u u^T - psi' Hess d.
+  const double s = c.depth();
+  const Eigen::Matrix3d normalPart = c.penalty.curvature(s) * c.normal * c.normal.transpose();
+  const Eigen::Matrix3d turningPart = -c.penalty.slope(s) * c.curvature;
+  const Eigen::Matrix3d H = c.stiffness * (normalPart + turningPart);
+  if (!projectToPSD) return H;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(0.5 * (H + H.transpose()));
+  return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
 }
 
 }  // namespace orthosim

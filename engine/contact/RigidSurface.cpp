@@ -23,10 +23,16 @@ struct RigidSurface::Impl {
   std::map<std::pair<int, int>, int> edgeUse;                 // 1: a border edge (open surface)
   std::vector<char> borderVertex;
 
-  // The pseudo-normal of the feature of triangle t that q lies on; `border` tells whether that
-  // feature is on the rim of an open surface (a crop or a cut), where no side is defined.
-  Eigen::Vector3d pseudoNormal(int t, const Eigen::Vector3d& q, bool& border) const {
-    border = false;
+  // The feature of a triangle that a closest point lies on.
+  struct Feature {
+    Eigen::Vector3d normal;  // its pseudo-normal
+    bool border = false;     // on the rim of an open surface (a crop or a cut), where no side is defined
+    int dimension = 2;       // 0 vertex, 1 edge, 2 face
+    Eigen::Vector3d edge = Eigen::Vector3d::Zero();  // unit direction of an edge
+  };
+
+  Feature featureAt(int t, const Eigen::Vector3d& q) const {
+    Feature f;
     // Barycentric coordinates of the closest point tell the feature it lies on.
     const Eigen::Vector3i corners = triangles.col(t);
     const Eigen::Vector3d a = vertices.col(corners[0]), b = vertices.col(corners[1]), c = vertices.col(corners[2]);
@@ -39,15 +45,19 @@ struct RigidSurface::Impl {
     for (int k = 0; k < 3; ++k)
       if (w[k] >= eps) nonzero[nz++] = k;
     if (nz == 1) {
-      border = borderVertex[corners[nonzero[0]]] != 0;
-      return vertexNormal[corners[nonzero[0]]];
-    }
-    if (nz == 2) {
+      f.dimension = 0;
+      f.border = borderVertex[corners[nonzero[0]]] != 0;
+      f.normal = vertexNormal[corners[nonzero[0]]];
+    } else if (nz == 2) {
       const auto e = std::minmax(corners[nonzero[0]], corners[nonzero[1]]);
-      border = edgeUse.at(e) == 1;
-      return edgeNormal.at(e);
+      f.dimension = 1;
+      f.border = edgeUse.at(e) == 1;
+      f.normal = edgeNormal.at(e);
+      f.edge = (vertices.col(e.second) - vertices.col(e.first)).normalized();
+    } else {
+      f.normal = faceNormal[t];
     }
-    return faceNormal[t];
+    return f;
   }
 };
 
@@ -85,14 +95,23 @@ SurfacePoint RigidSurface::query(const Eigen::Vector3d& p) const {
   out.triangle = nearest.triangle;
   const Eigen::Vector3d d = p - out.closest;
   const double len = d.norm();
-  bool border = false;
-  const Eigen::Vector3d pseudo = impl_->pseudoNormal(out.triangle, out.closest, border);
+  const Impl::Feature feature = impl_->featureAt(out.triangle, out.closest);
   // Nearest to the rim of an open surface: beside it, not inside.
-  const double sign = !border && d.dot(pseudo) < 0 ? -1.0 : 1.0;
+  const double sign = !feature.border && d.dot(feature.normal) < 0 ? -1.0 : 1.0;
   out.distance = sign * len;
   // Off the surface the gradient of the distance is the unit vector from the closest point; on it,
-  // the pseudo-normal.
-  out.normal = len > 1e-12 ? Eigen::Vector3d(sign * d / len) : pseudo;
+  // the pseudo-normal (and the curvature is left at zero: it is unbounded there).
+  if (len <= 1e-12) {
+    out.normal = feature.normal;
+    return out;
+  }
+  const Eigen::Vector3d u = d / len;
+  out.normal = sign * u;
+  if (feature.dimension < 2) {
+    Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - u * u.transpose();
+    if (feature.dimension == 1) P -= feature.edge * feature.edge.transpose();
+    out.curvature = (sign / len) * P;
+  }
   return out;
 }
 

@@ -19,6 +19,10 @@ struct SurfacePoint {
   Eigen::Vector3d closest;  // nearest point on the surface
   Eigen::Vector3d normal;   // unit, outward: the direction that increases `distance`
   int triangle = -1;        // the surface's triangle (its column) that holds `closest`
+  // Hessian of `distance` (1/mm): zero where the closest point lies inside a face; (I - u u^T) / r
+  // off a vertex and (I - e e^T - u u^T) / r off an edge of direction e, at distance r, signed as
+  // `distance` is: how the normal turns as the point moves round a corner of the surface.
+  Eigen::Matrix3d curvature = Eigen::Matrix3d::Zero();
 };
 
 class RigidSurface {

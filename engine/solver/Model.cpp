@@ -73,6 +73,7 @@ void Model::buildContact() {
     if (c.stiffness < 0 || !std::isfinite(c.stiffness))
       throw std::invalid_argument(where + ": stiffness must be positive (N/mm), or 0 for the default");
     pair.stiffness = c.stiffness > 0 ? c.stiffness : defaultStiffness;
+    pair.onset = kContactOnsetFactor * scene_.mesh.meanEdgeLength();
     try {
       pair.surface = std::make_shared<RigidSurface>(c.surface);
     } catch (const std::exception& e) {

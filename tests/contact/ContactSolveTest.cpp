@@ -106,7 +106,9 @@ TEST(ContactSolve, BlockDraggedAlongAPlaneSlidesWithoutResistance) {
             << " N; largest node difference " << (moved - a).cwiseAbs().maxCoeff() << " mm\n";
   EXPECT_GT(dragged.z(), 0.1);             // it does press on the floor
   EXPECT_LT(std::abs(dragged.x()), 1e-9);  // and feels no drag
-  EXPECT_NEAR(dragged.z(), pressed.z(), 1e-6 * pressed.z());
+  // Equal to the solves' tolerance: each stops with out-of-balance nodal forces of up to 1e-4 E h^2
+  // (6e-5 N here), so the summed contact force may differ by about that (measured: 3e-5 N).
+  EXPECT_NEAR(dragged.z(), pressed.z(), 1e-4 * pressed.z());
   EXPECT_LT((moved - a).cwiseAbs().maxCoeff(), 1e-4);
 }
 

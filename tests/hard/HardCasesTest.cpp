@@ -343,7 +343,21 @@ TEST_F(HardPhantom, SetbackOf10mmWithLipsTeethContact) {
   FragmentMotion m;
   m.translation = -10.0 * spec().frame.anterior;
   const HardRun run = solve("10 mm setback with contact (phantom)", coarse().scene, {{"mandible", m}});
-  expectConvergedWithin(run.result, 72);  // today 36 iterations in 3 substeps
+  // Before the smooth contact energy with its curvature term (issue 18): 36 iterations in 3
+  // substeps, the first stalling at step lengths of 1/4. Now the tissue follows in one substep.
+  expectConvergedWithin(run.result, 18);  // today 9 iterations in 1 substep
+  EXPECT_EQ(run.result.substeps.size(), 1u);
+}
+
+// Bimaxillary class III: Le Fort I 5 mm forward and the mandible 10 mm back, the lips squeezed
+// between the dentitions moving apart.
+TEST_F(HardPhantom, BimaxillarySetbackWithAdvancementAndContact) {
+  FragmentMotion maxilla, mandible;
+  maxilla.translation = 5.0 * spec().frame.anterior;
+  mandible.translation = -10.0 * spec().frame.anterior;
+  const HardRun run = solve("bimaxillary: 5 mm advancement + 10 mm setback (phantom, contact)", coarse().scene,
+                            {{"maxilla", maxilla}, {"mandible", mandible}});
+  expectConvergedWithin(run.result, 24);  // today 12 iterations in 1 substep
 }
 
 // Maxilla down and mandible up by `mm` each: the dentitions pass through each other (bones do not
@@ -355,14 +369,20 @@ std::map<std::string, FragmentMotion> intoEachOther(const AnatomicalFrame& frame
   return {{"maxilla", down}, {"mandible", up}};
 }
 
-// 8 mm each (16 mm of overlap) without the lips-teeth contact; with it the same plan converges
-// too, but takes 128 iterations (73 s on a loaded machine), too long for the default run.
+// 8 mm each (16 mm of overlap), without and with the lips-teeth contact (with it, before the
+// smooth contact energy of issue 18: 128 iterations, 73 s on a loaded machine).
 TEST_F(HardPhantom, FragmentsMovedIntoEachOther) {
   Scene scene = coarse().scene;
   scene.contacts.clear();
   const HardRun run =
       solve("fragments moved into each other, 8 mm each (phantom)", scene, intoEachOther(spec().frame, 8.0));
   expectConvergedWithin(run.result, 44);  // today 22 iterations in 9 substeps
+}
+
+TEST_F(HardPhantom, FragmentsMovedIntoEachOther8mmWithContact) {
+  const HardRun run = solve("fragments moved into each other, 8 mm each (phantom, contact)", coarse().scene,
+                            intoEachOther(spec().frame, 8.0));
+  expectConvergedWithin(run.result, 64);  // today 32 iterations in 11 substeps
 }
 
 // 5 mm each (10 mm of overlap) with the lips-teeth contact.
