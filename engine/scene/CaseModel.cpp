@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "mesh/BoundaryFaces.hpp"
+#include "mesh/CutCaps.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
@@ -27,7 +28,8 @@ SurfaceMesh trianglesOf(const SurfaceMesh& bone, const std::vector<int>& fragmen
 }
 
 // Contact pairs of the case: for every listed bone and every fragment cut from it, the fragment's
-// part of the bone surface against the tissue's free inner-surface nodes within range of it.
+// part of the bone surface, capped where the cuts opened it, against the tissue's free
+// inner-surface nodes within range of it.
 std::vector<ContactSpec> caseContacts(const CaseSpec& spec, const CaseTissue& tissue, const Scene& scene,
                                       const std::vector<BoneGroup>& groups) {
   std::vector<ContactSpec> out;
@@ -69,7 +71,7 @@ std::vector<ContactSpec> caseContacts(const CaseSpec& spec, const CaseTissue& ti
         ContactSpec contact;
         contact.fragment = scene.fragments[f].name;
         contact.name = boneName + " (" + contact.fragment + ")";
-        contact.surface = trianglesOf(bone, fragmentOf, f);
+        contact.surface = capCutOpenings(trianglesOf(bone, fragmentOf, f), bone).surface;
         contact.stiffness = spec.contacts[c].stiffness;
         const Eigen::VectorXd d = distancesToSurface(contact.surface.vertices, contact.surface.triangles, points);
         for (size_t k = 0; k < candidates.size(); ++k)
