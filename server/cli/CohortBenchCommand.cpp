@@ -49,7 +49,7 @@ std::string utcNow() {
 std::vector<CohortPatient> selectPatients(const CohortBenchOptions& opt) {
   const std::vector<CohortPatient>& all = cohortPatients();
   if (opt.patientIds.empty())
-    return {all.begin(), all.begin() + std::min<size_t>(std::max(opt.patients, 0), all.size())};
+    return {all.begin(), all.begin() + (opt.patients < 0 ? all.size() : std::min<size_t>(opt.patients, all.size()))};
   std::string known;
   for (const CohortPatient& p : all) known += (known.empty() ? "" : ", ") + p.id;
   for (const std::string& id : opt.patientIds)
