@@ -88,7 +88,8 @@ void BenchCommands::addCohort() {
   CohortBenchOptions& o = cohortOptions_;
   cohort_ = bench_->add_subcommand("cohort",
                                    "The synthetic cohort (twelve phantom patients): coarse and fine against a "
-                                   "finer reference, Table 4, speed-versus-error plot, soft-to-hard movement ratios");
+                                   "finer reference, Table 4 with the lips and soft pogonion, speed-versus-error "
+                                   "plot, soft-to-hard movement ratios");
   const int all = static_cast<int>(cohortPatients().size());
   cohort_
       ->add_option("--patients", o.patients,
