@@ -1,12 +1,27 @@
 // The accuracy report: the last `orthosim bench cohort` run written into web/cohort/ (its JSON
-// and speed-versus-error plot), shown as the paper's Table 4 and the soft-to-hard ratios with
-// their plausibility flags. Loaded only when the clinician opens the report.
+// and speed-versus-error plot), shown as the paper's Table 4 (with the lips' and soft chin's
+// distance to the reference) and the soft-to-hard ratios with their plausibility flags. Loaded only
+// when the clinician opens the report.
 "use strict";
 
 const REPORT_JSON = "cohort/cohort.json";
 const REPORT_PLOT = "cohort/speed-error.png";
 // The report format this page reads: the bench's kCohortReportSchemaVersion (engine/eval/CohortJson.hpp).
 const REPORT_SCHEMA_VERSION = 1;
+// Table 4's landmarks (the bench's cohortTableLandmarks, engine/eval/CohortRun.hpp), from each
+// run's landmark_error_mm.
+const REPORT_LANDMARKS = [
+  { name: "labrale_inferius", label: "Li" },
+  { name: "labrale_superius", label: "Ls" },
+  { name: "soft_pogonion", label: "Pog'" },
+];
+const LANDMARK_WORDS = {
+  labrale_inferius: "lower lip (labrale inferius)",
+  labrale_superius: "upper lip (labrale superius)",
+  soft_pogonion: "soft pogonion",
+};
+// A landmark this far from the reference or farther is shown in red (mm).
+const LANDMARK_FLAG_MM = 1;
 
 function reportCell(row, text, className) {
   const cell = document.createElement(row.parentElement && row.parentElement.tagName === "THEAD" ? "th" : "td");
@@ -16,11 +31,16 @@ function reportCell(row, text, className) {
   return cell;
 }
 
-function reportTable(head, rows) {
+// head: the column titles; groups (optional): a row above them of [title, columns spanned].
+function reportTable(head, rows, groups) {
   const table = document.createElement("table");
   const thead = table.createTHead();
+  if (groups) {
+    const gr = thead.insertRow();
+    groups.forEach(([title, span]) => (reportCell(gr, title).colSpan = span));
+  }
   const hr = thead.insertRow();
-  head.forEach((h) => reportCell(hr, h));
+  head.forEach((h) => (Array.isArray(h) ? (reportCell(hr, h[0]).title = h[1]) : reportCell(hr, h)));
   const body = table.createTBody();
   rows.forEach((r) => {
     const tr = body.insertRow();
@@ -32,15 +52,47 @@ function reportTable(head, rows) {
 const pct = (share) => (share === undefined ? "—" : `${(100 * share).toFixed(1)} %`);
 const secs = (s) => (s === undefined ? "—" : s.toFixed(2));
 
+// A landmark's distance to the reference (mm), red from LANDMARK_FLAG_MM on; "—" when not measured.
+function landmarkCell(run, name) {
+  const d = run.landmark_error_mm ? run.landmark_error_mm[name] : undefined;
+  if (typeof d !== "number") return "—";
+  return [d.toFixed(2), d >= LANDMARK_FLAG_MM ? "flag" : ""];
+}
+
+// Table 4: per patient, coarse and fine against the reference: triangles, solve time, the face's
+// area within 1 and 3 mm, and the distance at the lips and soft pogonion.
 function tableFour(report) {
+  const landmarks = REPORT_LANDMARKS;
+  const runColumns = 4 + landmarks.length;
+  const runCells = (r) => [r.skin_triangles, secs(r.solve_s), pct(r.face_region.share_within[0]),
+    pct(r.face_region.share_within[2]), ...landmarks.map((l) => landmarkCell(r, l.name))];
   const rows = report.patients.map((p) => {
-    if (p.error) return [p.id, p.procedure, ["not measured: " + p.error, "flag"], "", "", "", "", ""];
-    const c = p.coarse, f = p.fine;
-    return [p.id, `${p.diagnosis}: ${p.procedure}`, c.skin_triangles, secs(c.solve_s), pct(c.face_region.share_within[2]),
-      f.skin_triangles, secs(f.solve_s), pct(f.face_region.share_within[2])];
+    if (p.error) return [p.id, p.procedure, ["not measured: " + p.error, "flag"], ...Array(2 * runColumns - 1).fill("")];
+    return [p.id, `${p.diagnosis}: ${p.procedure}`, ...runCells(p.coarse), ...runCells(p.fine)];
   });
-  return reportTable(["patient", "procedure", "coarse triangles", "solve s", "within 3 mm",
-    "fine triangles", "solve s", "within 3 mm"], rows);
+  const within = (mm) => [`≤${mm} mm`, `share of the face region's skin area within ${mm} mm of the reference`];
+  const runHead = ["triangles", "solve s", within(1), within(3),
+    ...landmarks.map((l) => [l.label, `${LANDMARK_WORDS[l.name]}: distance to the reference, mm`])];
+  const table = reportTable(["patient", "procedure", ...runHead, ...runHead], rows,
+    [["", 2], ["coarse", runColumns], ["fine", runColumns]]);
+  table.id = "report-table4";
+  // A rule before each run's columns.
+  for (const tr of table.querySelectorAll("tbody tr, thead tr:last-child"))
+    for (const k of [2, 2 + runColumns]) if (tr.cells[k]) tr.cells[k].classList.add("run-start");
+  return table;
+}
+
+// What Table 4's columns measure.
+function tableFourNote() {
+  const note = document.createElement("p");
+  note.className = "hint";
+  note.id = "report-table4-note";
+  const names = REPORT_LANDMARKS.map((l) => `${l.label}: ${LANDMARK_WORDS[l.name]}`).join(", ");
+  note.textContent = "≤1 mm, ≤3 mm: share of the face region's skin area within 1 / 3 mm of the reference. " +
+    `${names}: distance in mm from the run's landmark to the same skin point on the reference ` +
+    `(placed once on the skin at rest, so that skin sliding along the profile counts); ${LANDMARK_FLAG_MM} mm or ` +
+    "more in red.";
+  return note;
 }
 
 function ratioTable(report) {
@@ -94,7 +146,7 @@ async function loadReport() {
   ratiosIntro.textContent = "Soft-to-hard movement ratios of the fine prediction beside the published bands " +
     "(forward movement over the bone's, as the studies measure them; plausibility checks, not clinical " +
     "validation); flagged values fall outside.";
-  box.append(intro, tableFour(report), runNotes(report), plot, ratiosIntro, ratioTable(report));
+  box.append(intro, tableFour(report), tableFourNote(), runNotes(report), plot, ratiosIntro, ratioTable(report));
   const stale = schemaNote(report);
   if (stale) box.prepend(stale);
 }

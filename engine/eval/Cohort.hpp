@@ -1,12 +1,13 @@
 #pragma once
-// The synthetic cohort of issue 7: ten phantom patients mirroring the procedure mix of the paper's
-// Table 1 (Le Fort I with and without segmentation, one Le Fort II, BSSO and USSO, one genioplasty,
-// class II / III / asymmetry / open bite morphologies, one case without maxillary surgery), each a
-// phantom variant with its osteotomies and a plan of clinically usual magnitudes
-// (../shared/notes/clinical-primer.md: 2-10 mm, up to 5-10 degrees). Frame of the phantom: mm,
-// +x posterior, +y right, +z superior (advancement is -x, impaction +z). Each fragment's motion is
-// its own world motion: a genioplasty piece that rides on a moved mandible has the mandible's
-// rotation and centre plus its own translation.
+// The synthetic cohort of issue 7: ten phantom patients (M1-M10) mirroring the procedure mix of the
+// paper's Table 1 (Le Fort I with and without segmentation, one Le Fort II, BSSO and USSO, one
+// genioplasty, class II / III / asymmetry / open bite morphologies, one case without maxillary
+// surgery), and two class III setbacks of issue 18 (M11: 10 mm BSSO setback alone; M12: 5 mm Le Fort
+// I advancement and 8 mm BSSO setback), each a phantom variant with its osteotomies and a plan of
+// clinically usual magnitudes (../shared/notes/clinical-primer.md: 2-10 mm, up to 5-10 degrees). Frame of the phantom:
+// mm, +x posterior, +y right, +z superior (advancement is -x, impaction +z). Each fragment's motion is its own world
+// motion: a genioplasty piece that rides on a moved mandible has the mandible's rotation and centre plus its own
+// translation.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -22,7 +23,7 @@ struct CohortMotion {
 };
 
 struct CohortPatient {
-  std::string id;         // M1..M10 as in the paper's Table 1
+  std::string id;         // M1..M10 as in the paper's Table 1, then M11, M12
   std::string diagnosis;  // class II, class III, asymmetry, open bite
   int variant = 0;        // phantom variant (engine/phantom): 1 class II, 2 class III, 3 asymmetry, 4 open bite
   std::string maxilla;    // "Le Fort I", "Le Fort I segmented", "Le Fort II", "none"
@@ -32,6 +33,9 @@ struct CohortPatient {
   std::vector<CohortMotion> plan;
   std::string procedure() const;  // short label, e.g. "LF1 seg + BSSO"
 };
+
+// The patients that mirror the paper's Table 1 come first; the setbacks follow.
+constexpr size_t kTableOnePatients = 10;
 
 const std::vector<CohortPatient>& cohortPatients();
 

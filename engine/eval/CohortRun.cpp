@@ -1,6 +1,7 @@
 #include "eval/CohortRun.hpp"
 
 #include <chrono>
+#include <limits>
 #include <stdexcept>
 
 #include "eval/Comparison.hpp"
@@ -9,6 +10,18 @@
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim {
+
+const std::vector<CohortTableLandmark>& cohortTableLandmarks() {
+  static const std::vector<CohortTableLandmark> table{
+      {"labrale_inferius", "Li"}, {"labrale_superius", "Ls"}, {"soft_pogonion", "Pog'"}};
+  return table;
+}
+
+double CohortRun::landmarkErrorMm(const std::string& name) const {
+  for (const LandmarkError& e : landmarks)
+    if (e.name == name && e.status == LandmarkStatus::Measured) return e.error.norm();
+  return std::numeric_limits<double>::quiet_NaN();
+}
 
 CohortRun solveCohortRun(const CaseSpec& base, const CohortRunConfig& cfg, int repeats, const std::string& cacheDir) {
   CohortRun r;
@@ -48,6 +61,8 @@ CohortRun solveCohortRun(const CaseSpec& base, const CohortRunConfig& cfg, int r
 }
 
 void measureAgainst(CohortRun& r, const CohortRun& reference) {
+  if (!sameTopology(reference.skin, r.rest))
+    throw std::runtime_error(r.spec.name + ": the reference's skin is not the case's skin (other triangles)");
   ComparisonInput in;
   in.predicted = &r.skin;
   in.reference = &reference.skin;

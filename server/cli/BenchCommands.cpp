@@ -1,5 +1,7 @@
 #include "cli/BenchCommands.hpp"
 
+#include "eval/Cohort.hpp"
+
 namespace orthosim::cli {
 namespace {
 
@@ -85,9 +87,14 @@ void BenchCommands::addRender() {
 void BenchCommands::addCohort() {
   CohortBenchOptions& o = cohortOptions_;
   cohort_ = bench_->add_subcommand("cohort",
-                                   "The synthetic cohort (ten phantom patients): coarse and fine against a "
-                                   "finer reference, Table 4, speed-versus-error plot, soft-to-hard movement ratios");
-  cohort_->add_option("--patients", o.patients, "The first N patients (0: only --face)")->check(CLI::Range(0, 10));
+                                   "The synthetic cohort (twelve phantom patients): coarse and fine against a "
+                                   "finer reference, Table 4 with the lips and soft pogonion, speed-versus-error "
+                                   "plot, soft-to-hard movement ratios");
+  const int all = static_cast<int>(cohortPatients().size());
+  cohort_
+      ->add_option("--patients", o.patients,
+                   "The first N patients (default: all " + std::to_string(all) + "; 0: only --face)")
+      ->check(CLI::Range(0, all));
   cohort_->add_option("--patient", o.patientIds, "Only these patients (e.g. --patient M4 --patient M9)");
   cohort_->add_option("--face", o.facePath,
                       "Also the soft-to-hard ratios of the ArtiSynth face (../shared/cases/artisynth_face)");
@@ -104,7 +111,7 @@ void BenchCommands::addCohort() {
   cohort_
       ->add_option("--sweep-patients", o.sweepPatients,
                    "Patients also solved over more resolutions and tolerances for the plot")
-      ->check(CLI::Range(0, 10));
+      ->check(CLI::Range(0, all));
   cohort_->add_option("--data", o.dataDir,
                       "Folder for the cohort's cases and tissue cache (kept; default: a temporary one)");
   addRepeats(cohort_, o.repeats, "Solves per run (medians reported)");

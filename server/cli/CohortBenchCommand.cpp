@@ -1,9 +1,10 @@
 // `orthosim bench cohort`: the synthetic cohort of issue 7 (engine/eval/Cohort) solved at coarse
 // and fine resolution and measured against a discretisation reference (a much finer mesh solved to
-// tight tolerances): the paper's Table 4 (triangles, solve time, share of the face within 3 mm),
-// a speed-versus-error plot over mesh resolutions and solver tolerances, and the soft-to-hard
-// movement ratios at the landmarks beside the published bands (engine/eval/Plausibility). The
-// runs, measurements, ratios and their JSON are engine/eval's; this file prints and collects them.
+// tight tolerances): the paper's Table 4 (triangles, solve time, share of the face within 1 and
+// 3 mm, and the lips' and soft chin's distance to the reference, issue 18), a speed-versus-error
+// plot over mesh resolutions and solver tolerances, and the soft-to-hard movement ratios at the
+// landmarks beside the published bands (engine/eval/Plausibility). The runs, measurements, ratios
+// and their JSON are engine/eval's; this file prints and collects them.
 #include <unistd.h>
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <utility>
 
 #include "cli/Commands.hpp"
 #include "eval/Cohort.hpp"
@@ -49,7 +51,7 @@ std::string utcNow() {
 std::vector<CohortPatient> selectPatients(const CohortBenchOptions& opt) {
   const std::vector<CohortPatient>& all = cohortPatients();
   if (opt.patientIds.empty())
-    return {all.begin(), all.begin() + std::min<size_t>(std::max(opt.patients, 0), all.size())};
+    return {all.begin(), all.begin() + (opt.patients < 0 ? all.size() : std::min<size_t>(opt.patients, all.size()))};
   std::string known;
   for (const CohortPatient& p : all) known += (known.empty() ? "" : ", ") + p.id;
   for (const std::string& id : opt.patientIds)
@@ -59,6 +61,16 @@ std::vector<CohortPatient> selectPatients(const CohortBenchOptions& opt) {
   for (const CohortPatient& p : all)
     if (std::find(opt.patientIds.begin(), opt.patientIds.end(), p.id) != opt.patientIds.end()) out.push_back(p);
   return out;
+}
+
+// A landmark's distance to the reference in a 6-wide column; n/a when not measured.
+std::string mm(double d) {
+  char s[16];
+  if (std::isfinite(d))
+    std::snprintf(s, sizeof s, "%6.2f", d);
+  else
+    std::snprintf(s, sizeof s, "%6s", "n/a");
+  return s;
 }
 
 }  // namespace
@@ -87,15 +99,24 @@ int runCohortBench(const CohortBenchOptions& opt) {
         "reference: each patient's plan on a mesh of %d skin triangles, solved to %g of the default tolerances\n"
         "  (force %g E h^2, step %g h; up to %d iterations): a discretisation reference, not clinical truth\n"
         "coarse: %d, fine: %d skin triangles (lips x3, nose x3, chin x2 the density), default tolerances;\n"
-        "within: share of the face region's skin area within 1 / 3 mm of the reference%s\n\n",
+        "within: share of the face region's skin area within 1 / 3 mm of the reference; Li, Ls, Pog': mm from\n"
+        "  the lower lip (labrale inferius), upper lip (labrale superius) and soft pogonion to the same skin point\n"
+        "  on the reference%s\n\n",
         n, cohortPatients().size(), std::thread::hardware_concurrency(), loadAtStart.c_str(), opt.repeats,
         opt.referenceTriangles, opt.referenceToleranceScale, 1e-4 * opt.referenceToleranceScale,
         1e-4 * opt.referenceToleranceScale, kCohortReferenceIterations, opt.coarseTriangles, opt.fineTriangles,
         opt.noContact ? "\nWITHOUT lips-teeth contact (--no-contact: a quick check, not the product's model)" : "");
-    if (n > 0)
-      std::printf("%-4s %-10s %-22s | %7s %6s %8s %7s %7s | %7s %6s %8s %7s %7s | %7s %7s\n", "id", "diagnosis",
-                  "procedure", "c_tri", "c_tets", "c_solve", "c<1mm", "c<3mm", "f_tri", "f_tets", "f_solve", "f<1mm",
-                  "f<3mm", "r_tri", "r_solve");
+    if (n > 0) {
+      std::printf("%-4s %-10s %-22s", "id", "diagnosis", "procedure");
+      for (const char* r : {"c", "f"}) {
+        std::printf(" |");
+        const std::pair<const char*, int> columns[] = {
+            {"_tri", 7}, {"_tets", 6}, {"_solve", 8}, {"<1mm", 7}, {"<3mm", 7}};
+        for (const auto& [col, width] : columns) std::printf(" %*s", width, (r + std::string(col)).c_str());
+        for (const CohortTableLandmark& l : cohortTableLandmarks()) std::printf(" %6s", (r + ("_" + l.label)).c_str());
+      }
+      std::printf(" | %7s %7s\n", "r_tri", "r_solve");
+    }
     std::fflush(stdout);
 
     json patients = json::array(), sweep = json::array();
@@ -147,11 +168,14 @@ int runCohortBench(const CohortBenchOptions& opt) {
             {{"id", p.id}, {"diagnosis", p.diagnosis}, {"procedure", p.procedure()}, {"error", e.what()}});
         continue;
       }
-      std::printf("%-4s %-10s %-22s | %7d %6d %8.3f %6.1f%% %6.1f%% | %7d %6d %8.3f %6.1f%% %6.1f%% | %7d %7.2f\n",
-                  p.id.c_str(), p.diagnosis.c_str(), p.procedure().c_str(), coarse.skinTriangles, coarse.tets,
-                  coarse.solveSeconds, 100 * coarse.shareWithin(0), 100 * coarse.shareWithin(2), fine.skinTriangles,
-                  fine.tets, fine.solveSeconds, 100 * fine.shareWithin(0), 100 * fine.shareWithin(2), ref.skinTriangles,
-                  ref.solveSeconds);
+      std::printf("%-4s %-10s %-22s", p.id.c_str(), p.diagnosis.c_str(), p.procedure().c_str());
+      for (const CohortRun* run : {&coarse, &fine}) {
+        std::printf(" | %7d %6d %8.3f %6.1f%% %6.1f%%", run->skinTriangles, run->tets, run->solveSeconds,
+                    100 * run->shareWithin(0), 100 * run->shareWithin(2));
+        for (const CohortTableLandmark& l : cohortTableLandmarks())
+          std::printf(" %s", mm(run->landmarkErrorMm(l.name)).c_str());
+      }
+      std::printf(" | %7d %7.2f\n", ref.skinTriangles, ref.solveSeconds);
       if (!referenceNote.empty()) std::printf("  %s %s\n", p.id.c_str(), referenceNote.c_str());
       for (const CohortRun* run : {&coarse, &fine, &ref})
         for (const std::string& w : run->warnings)
@@ -279,6 +303,25 @@ int runCohortBench(const CohortBenchOptions& opt) {
           "within 1 mm %.1f%%, 3 mm %.1f%%\n",
           static_cast<int>(ct.size()), median(ct), 100 * median(c1), 100 * median(c3), median(ft), 100 * median(f1),
           100 * median(f3));
+    if (!ct.empty()) {
+      std::printf("landmark distance to the reference (mm; median / max over the measured patients):");
+      for (const char* run : {"coarse", "fine"}) {
+        std::printf("%s %s", std::string(run) == "coarse" ? "" : ";", run);
+        const char* sep = " ";
+        for (const CohortTableLandmark& l : cohortTableLandmarks()) {
+          std::vector<double> d;
+          for (const json& pj : patients)
+            if (!pj.contains("error") && pj[run]["landmark_error_mm"][l.name].is_number())
+              d.push_back(pj[run]["landmark_error_mm"][l.name]);
+          if (d.empty())
+            std::printf("%s%s n/a", sep, l.label.c_str());
+          else
+            std::printf("%s%s %.2f / %.2f", sep, l.label.c_str(), median(d), *std::max_element(d.begin(), d.end()));
+          sep = ", ";
+        }
+      }
+      std::printf("\n");
+    }
 
     json out = {
         {"schema_version", kCohortReportSchemaVersion},

@@ -74,8 +74,8 @@ struct RenderBenchOptions {
 int runRenderBench(const RenderBenchOptions& options);
 
 struct CohortBenchOptions {
-  int patients = 10;                    // the first N of the cohort (engine/eval/Cohort)
-  std::vector<std::string> patientIds;  // instead: these patients (M1..M10)
+  int patients = -1;                    // the first N of the cohort (engine/eval/Cohort); -1: all
+  std::vector<std::string> patientIds;  // instead: these patients (M1..M12)
   int coarseTriangles = 3000;           // skin triangles (the case defaults)
   int fineTriangles = 20000;
   int referenceTriangles = 60000;         // the discretisation reference: 3x fine

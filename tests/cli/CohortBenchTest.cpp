@@ -1,13 +1,15 @@
-// `orthosim bench cohort` in its small CI form: two patients, small meshes, no contact. The table
-// has a row per patient with finite figures, fine is at least as accurate as coarse within 1 mm,
-// the soft-to-hard ratios are computed, and the plot and JSON are written. The full cohort (ten
-// patients, product meshes) takes minutes and runs by hand (README). The skin simplification does
-// not go much below 3000 triangles on the phantom (requests of 1000-4000 all give 2700-3600), so the
-// coarse mesh here is the product's and fine and reference are smaller than the product's.
+// `orthosim bench cohort` in its small CI form: two patients (M1 of Table 1 and the bimaxillary
+// setback M12), small meshes, no contact. The table has a row per patient with finite figures and
+// the distances at the lips and soft pogonion the JSON gives, fine is at least as accurate as coarse
+// within 1 mm, the soft-to-hard ratios are computed, and the plot and JSON are written. The full
+// cohort (twelve patients, product meshes) takes minutes and runs by hand (docs/cohort.md). The skin simplification
+// does not go much below 3000 triangles on the phantom (requests of 1000-4000 all give 2700-3600), so the coarse mesh
+// here is the product's and fine and reference are smaller than the product's.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -52,18 +54,21 @@ bool finite(const nlohmann::json& v) { return v.is_number() && std::isfinite(v.g
 
 TEST_F(CohortBench, TwoPatientsTablePlotAndRatios) {
   const std::string json = (dir_ / "cohort.json").string(), png = (dir_ / "plot.png").string();
-  ASSERT_EQ(run("--patients 2 --no-contact --coarse-triangles 3000 --fine-triangles 6000 --reference-triangles 12000 "
-                "--sweep-patients 0 --repeats 1 --json " +
+  ASSERT_EQ(run("--patient M1 --patient M12 --no-contact --coarse-triangles 3000 --fine-triangles 6000 "
+                "--reference-triangles 12000 --sweep-patients 0 --repeats 1 --json " +
                 json + " --image " + png),
             0)
       << read("out.txt") << read("err.txt");
   const std::string out = read("out.txt");
   std::cout << out;
-  // The table: a row per patient with its procedure.
+  // The table: a row per patient with its procedure; the lips and soft pogonion for coarse and fine.
   EXPECT_NE(out.find("M1   class III  LF1 seg + BSSO"), std::string::npos) << out;
-  EXPECT_NE(out.find("M2   open bite  LF1 seg + BSSO"), std::string::npos) << out;
+  EXPECT_NE(out.find("M12  class III  LF1 + BSSO"), std::string::npos) << out;
   EXPECT_NE(out.find("discretisation reference, not clinical truth"), std::string::npos);
   EXPECT_NE(out.find("soft-to-hard movement ratios"), std::string::npos);
+  EXPECT_NE(out.find("c<1mm   c<3mm   c_Li   c_Ls c_Pog' |"), std::string::npos) << out;
+  EXPECT_NE(out.find("f<1mm   f<3mm   f_Li   f_Ls f_Pog' |"), std::string::npos) << out;
+  EXPECT_NE(out.find("landmark distance to the reference (mm; median / max"), std::string::npos) << out;
 
   std::ifstream in(json);
   const nlohmann::json j = nlohmann::json::parse(in);
@@ -98,6 +103,29 @@ TEST_F(CohortBench, TwoPatientsTablePlotAndRatios) {
       }
       EXPECT_TRUE(finite(r["face_region"]["mean_abs_mm"]));
       for (const auto& [name, e] : r["landmark_error_mm"].items()) EXPECT_TRUE(finite(e)) << name;
+      for (const CohortTableLandmark& l : cohortTableLandmarks()) EXPECT_TRUE(finite(r["landmark_error_mm"][l.name]));
+    }
+    // The table's row shows, for coarse then fine, the JSON's distances at Li, Ls and Pog' (the
+    // last three figures of each run's block).
+    const std::string id = p["id"];
+    const size_t at = out.find("\n" + id + " ");
+    ASSERT_NE(at, std::string::npos) << id;
+    std::istringstream row(out.substr(at + 1, out.find('\n', at + 1) - at - 1));
+    std::vector<std::string> blocks;
+    for (std::string block; std::getline(row, block, '|');) blocks.push_back(block);
+    ASSERT_EQ(blocks.size(), 4u) << id;  // patient | coarse | fine | reference
+    for (int k = 0; k < 2; ++k) {
+      std::istringstream fields(blocks[1 + k]);
+      std::vector<std::string> f;
+      for (std::string x; fields >> x;) f.push_back(x);
+      ASSERT_EQ(f.size(), 8u) << blocks[1 + k];
+      int col = 5;
+      for (const CohortTableLandmark& l : cohortTableLandmarks()) {
+        char expected[16];
+        std::snprintf(expected, sizeof expected, "%.2f",
+                      p[k == 0 ? "coarse" : "fine"]["landmark_error_mm"][l.name].get<double>());
+        EXPECT_EQ(f[col++], expected) << id << " " << (k == 0 ? "coarse " : "fine ") << l.name;
+      }
     }
     EXPECT_LT(p["coarse"]["skin_triangles"].get<int>(), p["fine"]["skin_triangles"].get<int>());
     EXPECT_LT(p["fine"]["skin_triangles"].get<int>(), p["reference"]["skin_triangles"].get<int>());

@@ -1,5 +1,6 @@
-// The synthetic cohort (engine/eval/Cohort) mirrors the procedure mix of the paper's Table 1 and
-// its cases open like any user's case, with every planned fragment made by its cuts.
+// The synthetic cohort (engine/eval/Cohort) mirrors the procedure mix of the paper's Table 1, adds
+// two class III setbacks of 8-10 mm (issue 18), and its cases open like any user's case, with every
+// planned fragment made by its cuts.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -10,6 +11,7 @@
 
 #include "eval/Cohort.hpp"
 #include "math/Angles.hpp"
+#include "phantom/PhantomCase.hpp"
 #include "scene/CaseFile.hpp"
 
 namespace fs = std::filesystem;
@@ -18,8 +20,11 @@ namespace orthosim {
 namespace {
 
 TEST(Cohort, MirrorsThePapersTableOne) {
-  const std::vector<CohortPatient>& c = cohortPatients();
-  ASSERT_EQ(c.size(), 10u);
+  const std::vector<CohortPatient>& all = cohortPatients();
+  ASSERT_EQ(kTableOnePatients, 10u);
+  ASSERT_EQ(all.size(), kTableOnePatients + 2);  // and the two setbacks of issue 18
+  const std::vector<CohortPatient> c(all.begin(), all.begin() + kTableOnePatients);
+  for (size_t i = 0; i < all.size(); ++i) EXPECT_EQ(all[i].id, "M" + std::to_string(i + 1));
   std::map<std::string, int> maxilla, mandible, diagnosis;
   int genio = 0, bimaxillary = 0;
   for (const CohortPatient& p : c) {
@@ -43,7 +48,7 @@ TEST(Cohort, MirrorsThePapersTableOne) {
   EXPECT_EQ(diagnosis["asymmetry"], 3);
   EXPECT_EQ(diagnosis["open bite"], 1);
   const std::map<std::string, int> variantOf = {{"class II", 1}, {"class III", 2}, {"asymmetry", 3}, {"open bite", 4}};
-  for (const CohortPatient& p : c) {
+  for (const CohortPatient& p : all) {
     EXPECT_EQ(p.variant, variantOf.at(p.diagnosis)) << p.id;
     // Clinically usual magnitudes (primer): translations up to 10 mm, rotations up to 10 degrees.
     ASSERT_FALSE(p.plan.empty()) << p.id;
@@ -102,11 +107,66 @@ TEST(Cohort, AsymmetryCorrectionsBringTheChinTowardsTheMidline) {
   fs::remove_all(dir);
 }
 
+// Issue 18: class III patients with large mandibular setbacks, where the lips press on the teeth:
+// one BSSO setback alone and one bimaxillary (Le Fort I advancement and BSSO setback), 8-10 mm,
+// with the phantom's lips-teeth contact as its case declares it.
+TEST(Cohort, ClassThreeSetbacksOfEightToTenMillimetresWithContact) {
+  const fs::path dir = fs::temp_directory_path() / ("orthosim_cohort_setback_" + std::to_string(::getpid()));
+  const CaseSpec phantom = loadCaseFile(writePhantomCase(2, (dir / "phantom").string()));
+  ASSERT_FALSE(phantom.contacts.empty()) << "the class III phantom declares lips-teeth contact";
+  const std::vector<CohortPatient>& all = cohortPatients();
+  int alone = 0, bimaxillary = 0;
+  for (size_t i = kTableOnePatients; i < all.size(); ++i) {
+    const CohortPatient& p = all[i];
+    SCOPED_TRACE(p.id);
+    EXPECT_EQ(p.diagnosis, "class III");
+    EXPECT_EQ(p.variant, 2);
+    EXPECT_EQ(p.mandible, "BSSO");
+    EXPECT_FALSE(p.genioplasty);
+    const CaseSpec spec = loadCaseFile(writeCohortCase(p, (dir / p.id).string()));
+    const std::vector<std::string> frags = spec.fragmentNames();
+    for (const CohortMotion& m : p.plan)
+      EXPECT_NE(std::find(frags.begin(), frags.end(), m.fragment), frags.end()) << m.fragment;
+    // The contact is the phantom's.
+    ASSERT_EQ(spec.contacts.size(), phantom.contacts.size());
+    for (size_t k = 0; k < spec.contacts.size(); ++k) {
+      EXPECT_EQ(spec.contacts[k].bones, phantom.contacts[k].bones);
+      EXPECT_EQ(spec.contacts[k].rangeMm, phantom.contacts[k].rangeMm);
+    }
+    // The chin and the lower incisors go straight back 8-10 mm.
+    ASSERT_TRUE(spec.plan.count("mandible"));
+    const RigidPose mandible = spec.plan.at("mandible").pose();
+    for (const char* lm : {"pogonion", "lower_incisor_tip"}) {
+      const Eigen::Vector3d d = mandible.apply(spec.landmarks.at(lm)) - spec.landmarks.at(lm);
+      EXPECT_GE(-d.dot(spec.frame.anterior), 8.0 - 1e-9) << lm;
+      EXPECT_LE(-d.dot(spec.frame.anterior), 10.0 + 1e-9) << lm;
+      EXPECT_LT(d.cross(spec.frame.anterior).norm(), 1e-9) << lm << " moves off the anteroposterior axis";
+    }
+    if (p.maxilla == "none") {
+      ++alone;
+      EXPECT_EQ(spec.plan.size(), 1u);
+    } else {
+      ++bimaxillary;
+      EXPECT_EQ(p.maxilla, "Le Fort I");
+      ASSERT_TRUE(spec.plan.count("maxilla"));
+      const Eigen::Vector3d tip = spec.landmarks.at("upper_incisor_tip");
+      const double forward = (spec.plan.at("maxilla").pose().apply(tip) - tip).dot(spec.frame.anterior);
+      EXPECT_GE(forward, 4.0);
+      EXPECT_LE(forward, 5.0 + 1e-9);
+    }
+  }
+  EXPECT_GE(alone, 1);
+  EXPECT_GE(bimaxillary, 1);
+  fs::remove_all(dir);
+}
+
 TEST(Cohort, ProcedureLabels) {
   const std::vector<CohortPatient>& c = cohortPatients();
   EXPECT_EQ(c[0].procedure(), "LF1 seg + BSSO");
   EXPECT_EQ(c[3].procedure(), "LF1 + USSO + genio");
   EXPECT_EQ(c[8].procedure(), "BSSO");
+  EXPECT_EQ(c[10].procedure(), "BSSO");
+  EXPECT_EQ(c[11].procedure(), "LF1 + BSSO");
 }
 
 }  // namespace

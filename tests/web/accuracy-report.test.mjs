@@ -1,6 +1,7 @@
 // Browser test of the accuracy report on the planning page (issue 7): opening it shows the
-// committed cohort report (web/cohort/) as the paper's Table 4, the speed-versus-error plot and
-// the soft-to-hard ratios, with exactly the flags the report counts. It checks the page against
+// committed cohort report (web/cohort/) as the paper's Table 4 (with the lips and soft pogonion,
+// issue 18), the speed-versus-error plot and the soft-to-hard ratios, with exactly the flags the
+// report counts. It checks the page against
 // that committed SNAPSHOT of `orthosim bench cohort`, not against a fresh run (20+ min): that the
 // snapshot is in the bench's current format is checked by its schema_version here (against the
 // page's reader) and in C++ (CohortReportSchema: against the writer's constant; CohortBench: its
@@ -12,7 +13,7 @@ import { withPage } from "./harness.mjs";
 
 const report = JSON.parse(readFileSync(new URL("../../web/cohort/cohort.json", import.meta.url)));
 
-test("accuracy report from the committed web/cohort snapshot: Table 4, plot and flagged ratios", { timeout: 120000 }, async () => {
+test("accuracy report from the committed web/cohort snapshot: Table 4 with the lips and soft pogonion, plot and flagged ratios", { timeout: 120000 }, async () => {
   await withPage(async (page, url) => {
     const pageErrors = [];
     page.on("pageerror", (e) => pageErrors.push(e.message));
@@ -24,14 +25,47 @@ test("accuracy report from the committed web/cohort snapshot: Table 4, plot and 
     assert.equal(report.schema_version, await page.evaluate(() => REPORT_SCHEMA_VERSION), "web/cohort/cohort.json schema_version");
     assert.equal(await page.locator("#report-schema").count(), 0, "no stale-report warning");
 
-    // Table 4: one row per patient, the share within 3 mm as the bench measured it.
-    const rows = await page.locator("#report-body table").first().locator("tbody tr").allTextContents();
+    // Table 4: one row per patient; for coarse and fine, the shares within 1 and 3 mm and the
+    // distance at the lips and soft pogonion as the bench measured them, in the columns their
+    // headers name.
+    const table = page.locator("#report-body table").first();
+    const head = await table.locator("thead tr").last().locator("th").allTextContents();
+    const landmarks = [{ name: "labrale_inferius", label: "Li" }, { name: "labrale_superius", label: "Ls" },
+      { name: "soft_pogonion", label: "Pog'" }];
+    const runHead = ["triangles", "solve s", "≤1 mm", "≤3 mm", ...landmarks.map((l) => l.label)];
+    assert.deepEqual(head, ["patient", "procedure", ...runHead, ...runHead]);
+    const groups = await table.locator("thead tr").first().locator("th").allTextContents();
+    assert.deepEqual(groups, ["", "coarse", "fine"]);
+    const rows = await table.locator("tbody tr").all();
     assert.equal(rows.length, report.patients.length);
-    report.patients.forEach((p, i) => {
-      assert.ok(rows[i].startsWith(p.id), `row ${i} is ${p.id}`);
-      if (p.error) assert.match(rows[i], /not measured/);
-      else assert.ok(rows[i].includes(`${(100 * p.fine.face_region.share_within[2]).toFixed(1)} %`), rows[i]);
-    });
+    const pctText = (share) => `${(100 * share).toFixed(1)} %`;
+    let flaggedLandmarks = 0;
+    for (const [i, p] of report.patients.entries()) {
+      const cells = await rows[i].locator("td").allTextContents();
+      assert.equal(cells[0], p.id, `row ${i}`);
+      assert.equal(cells.length, head.length, `row ${i} has a cell per column`);
+      if (p.error) {
+        assert.match(cells[2], /not measured/);
+        continue;
+      }
+      ["coarse", "fine"].forEach((run, k) => {
+        const col = (name) => cells[head.indexOf(name, 2 + k * runHead.length)];
+        const r = p[run];
+        assert.equal(col("≤1 mm"), pctText(r.face_region.share_within[0]), `${p.id} ${run} within 1 mm`);
+        assert.equal(col("≤3 mm"), pctText(r.face_region.share_within[2]), `${p.id} ${run} within 3 mm`);
+        for (const l of landmarks) {
+          const d = r.landmark_error_mm[l.name];
+          assert.equal(typeof d, "number", `${p.id} ${run} ${l.name} measured in the snapshot`);
+          assert.equal(col(l.label), d.toFixed(2), `${p.id} ${run} ${l.name}`);
+          if (d >= 1) ++flaggedLandmarks;
+        }
+      });
+    }
+    // Landmarks 1 mm or more from the reference are marked, and only those.
+    assert.equal(await table.locator("td.flag").count(),
+      flaggedLandmarks + report.patients.filter((p) => p.error).length);
+    // What the columns measure.
+    assert.match(await page.locator("#report-table4-note").textContent(), /same skin point on the reference/);
 
     // The plot is the bench's image, loaded.
     const size = await page.locator("#report-plot").evaluate(async (img) => {
