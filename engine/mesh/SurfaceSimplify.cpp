@@ -432,11 +432,14 @@ SimplifyReport makeReport(const SimplifyOptions& options, const std::vector<Patc
                           std::vector<int> source) {
   SimplifyReport report;
   report.skinTarget = options.skinTriangles;
+  double weightedSkinArea = 0, simplifiedSkin = 0;
   for (const Patch& p : patches) {
     (p.label == 0 ? report.skinTriangles : report.solidTriangles) += static_cast<int>(p.result.size());
+    if (p.label == 0 && !p.frozen) weightedSkinArea += p.area * p.weight, simplifiedSkin += p.result.size();
     report.maxErrorMm = std::max(report.maxErrorMm, p.errorMm);
     if (p.frozen) report.frozenTriangles += static_cast<int>(p.triangles.size());
   }
+  report.plainSkinTrianglesPerArea = weightedSkinArea > 0 ? simplifiedSkin / weightedSkinArea : 0;
   report.patches = static_cast<int>(patches.size());
   report.rounds = rounds;
   report.sourceVertex = std::move(source);

@@ -34,7 +34,10 @@ struct SimplifyOptions {
 
 struct SimplifyReport {
   int skinTarget = 0;
-  int skinTriangles = 0;   // label-0 triangles in the result
+  int skinTriangles = 0;  // label-0 triangles in the result
+  // Skin triangles per mm^2 reached outside every refine region (simplified patches only): a
+  // refine region of density d has d times as many.
+  double plainSkinTrianglesPerArea = 0;
   int solidTriangles = 0;  // label > 0 triangles in the result
   int patches = 0;
   double maxErrorMm = 0;          // largest meshopt result error over the patches (its estimate)

@@ -58,7 +58,7 @@ struct CaseFixed {
 struct CaseContact {
   std::vector<std::string> bones;
   double rangeMm = 15;
-  double stiffness = 0;  // N/mm per node; 0: the default (10 E h)
+  double stiffness = 0;  // N/mm per node; 0: the default (20 E h)
 };
 
 struct CaseSpec {

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <tuple>
 
 #include "mesh/BoundaryFaces.hpp"
 #include "mesh/CavityPoints.hpp"
+#include "mesh/LongEdgeSplit.hpp"
 #include "mesh/SurfaceCleanup.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/Tetrahedralize.hpp"
@@ -15,6 +17,11 @@
 
 namespace orthosim {
 namespace {
+
+// No boundary edge longer than this many times the skin's target edge at its place: flat patches
+// (the mouth slit's walls) otherwise keep a few triangles tens of mm long, whose tetrahedra
+// cannot bend (mesh/LongEdgeSplit).
+constexpr double kMaxEdgeFactor = 3.0;
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -93,6 +100,29 @@ std::vector<std::vector<int>> labelNodes(const LabelledSurface& surface, const T
   return out;
 }
 
+// Vertices on a bone: edges there are not split, since a new free node next to a bone can make a
+// flat tetrahedron with three bonded ones that the first move of the bone turns over.
+std::vector<bool> boneVertices(const LabelledSurface& s, const std::vector<bool>& bone) {
+  std::vector<bool> on(s.surface.numVertices(), false);
+  for (int t = 0; t < s.surface.numTriangles(); ++t) {
+    const int l = s.label[t];
+    if (l > 0 && static_cast<size_t>(l - 1) < bone.size() && bone[l - 1])
+      for (int c = 0; c < 3; ++c) on[s.surface.triangles(c, t)] = true;
+  }
+  return on;
+}
+
+// Long edges split on the skin and air cavities only: a bone's interface moves rigidly whatever its
+// triangles.
+EdgeSizing freeSurfaceSizing(const SurfaceTissueInput& in, const SimplifyReport& simplified) {
+  const EdgeSizing target =
+      targetEdgeSizing(simplified.plainSkinTrianglesPerArea, in.interfaceDensity, in.refine, kMaxEdgeFactor);
+  return [target, bone = in.bone](const Eigen::Vector3d& at, int label) {
+    const bool rigid = label > 0 && static_cast<size_t>(label - 1) < bone.size() && bone[label - 1];
+    return rigid ? std::numeric_limits<double>::infinity() : target(at, label);
+  };
+}
+
 }  // namespace
 
 SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
@@ -136,6 +166,10 @@ SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
     CleanupReport cleaned;
     LabelledSurface candidate =
         c.collapseMm > 0 ? removeSlivers(simple, c.collapseMm, c.needleRatio, c.capDeg, &cleaned) : simple;
+    LongEdgeSplitReport split;
+    if (simplified.plainSkinTrianglesPerArea > 0)
+      candidate =
+          splitLongEdges(candidate, freeSurfaceSizing(in, simplified), boneVertices(candidate, in.bone), &split);
     boundarySeconds += since(t0);
     t0 = Clock::now();
     try {
@@ -149,6 +183,7 @@ SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
     tetgenSeconds += since(t0);
     if (!meshed) continue;
     boundary = std::move(candidate);
+    if (split.splits > 0) how << ", " << split.splits << " long edges split";
     if (c.collapseMm > 0)
       how << ", needles and caps " << cleaned.needlesAndCapsBefore << " -> " << cleaned.needlesAndCapsAfter
           << " (edges collapsed up to " << c.collapseMm << " mm)";

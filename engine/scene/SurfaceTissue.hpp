@@ -14,12 +14,15 @@
 namespace orthosim {
 
 // Part of the tissue cache key: bump when the meshing changes what it produces.
-constexpr const char* kSurfaceTissueVersion = "surface-tissue-3";
+constexpr const char* kSurfaceTissueVersion = "surface-tissue-4";
 
 struct SurfaceTissueInput {
   SurfaceMesh envelope;             // closed skin envelope (uv optional)
   std::vector<SurfaceMesh> solids;  // closed bones and cavities, subtracted
   std::vector<std::string> names;   // per solid, for messages
+  // Per solid: a bone, whose interface moves rigidly (its long edges are not split), or air.
+  // Empty: all air.
+  std::vector<bool> bone;
   int skinTriangles = 3000;
   std::vector<RefineRegion> refine;
   double interfaceDensity = 0.5;    // bone and cavity surfaces: triangles per area relative to the skin

@@ -347,8 +347,8 @@ TEST_F(HardPhantom, SegmentedMaxillaMovedSixMillimetresApart) {
                             {{"maxilla_left", left}, {"maxilla_right", right}});
   expectConvergedWithin(run.result, 12);  // today 6 iterations in 1 substep
   // The fragments' contact surfaces are closed at their cuts (mesh/CutCaps): no node ends inside
-  // one beyond the penalty's give, at most half an element (today 0.22 mm here; 0.59 mm in the
-  // setbacks, a node pinched between the ramus and the distal segment's cut face).
+  // one beyond the penalty's give, at most half an element (today 0.13 mm here; 0.72 mm in the
+  // setbacks, where the tissue the mandible drags back presses on the front of the right ramus).
   EXPECT_LT(run.deepestContact, 1.0);
 }
 
@@ -359,7 +359,7 @@ TEST_F(HardPhantom, SetbackOf10mmWithLipsTeethContact) {
   const HardRun run = solve("10 mm setback with contact (phantom)", coarse().scene, {{"mandible", m}});
   // Before the smooth contact energy with its curvature term (issue 18): 36 iterations in 3
   // substeps, the first stalling at step lengths of 1/4. Now the tissue follows in one substep.
-  expectConvergedWithin(run.result, 18);  // today 9 iterations in 1 substep
+  expectConvergedWithin(run.result, 18);  // today 10 iterations in 1 substep
   EXPECT_EQ(run.result.substeps.size(), 1u);
   EXPECT_LT(run.deepestContact, 1.0);
 }
@@ -372,7 +372,7 @@ TEST_F(HardPhantom, BimaxillarySetbackWithAdvancementAndContact) {
   mandible.translation = -10.0 * spec().frame.anterior;
   const HardRun run = solve("bimaxillary: 5 mm advancement + 10 mm setback (phantom, contact)", coarse().scene,
                             {{"maxilla", maxilla}, {"mandible", mandible}});
-  expectConvergedWithin(run.result, 24);  // today 12 iterations in 1 substep
+  expectConvergedWithin(run.result, 24);  // today 10 iterations in 1 substep
   EXPECT_LT(run.deepestContact, 1.0);
 }
 
@@ -408,17 +408,19 @@ TEST_F(HardPhantom, FragmentsMovedIntoEachOtherWithContact) {
   expectConvergedWithin(run.result, 16);  // today 8 iterations in 1 substep
 }
 
-// Refused today: at load fraction 0.3967 (24 mm) moving the boundary any further inverts
-// elements; 58 iterations in 29 substeps, the last 2^-12 of the plan long. Pinned: refused, not
-// before 0.35 of the plan, within 116 iterations (an iteration budget instead of a time limit:
-// the refusal comes in bounded work, and the ctest timeout catches a hang).
+// Refused today by the solver's iteration budget (max_total_iterations, 300) at load fraction
+// 0.715 (43 mm), after about 80 ever shorter substeps; until the mouth slit's walls were split into
+// short edges (issue 18) the stiffer lips gave up at 0.397. Pinned: refused, not before 0.35 of
+// the plan, within the budget plus one substep's iterations (bounded work instead of a time
+// limit; the ctest timeout catches a hang).
 TEST_F(HardPhantom, FragmentMoved60mmAway) {
   FragmentMotion m;
   m.translation = 60.0 * spec().frame.anterior;
   const HardRun run = solve("maxilla 60 mm forward (phantom, contact)", coarse().scene, {{"maxilla", m}});
   EXPECT_FALSE(run.result.converged);
   EXPECT_GT(run.result.loadFraction, 0.35);
-  EXPECT_LE(allIterations(run.result), 116) << "over the iteration budget";
+  const SolverSettings& budget = coarse().scene.solver;
+  EXPECT_LE(allIterations(run.result), budget.maxTotalIterations + budget.maxIterations) << "over the iteration budget";
 }
 
 }  // namespace
