@@ -12,6 +12,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr size_t kStallWindow = 8;  // iterations
+// A prediction that turns over more elements than this, or still some after this many rounds of
+// untangling, is shortened instead.
+constexpr size_t kUntangleMaxElements = 16;
+constexpr int kUntangleRounds = 3;
 
 struct Stopwatch {
   double& total;
@@ -160,7 +164,14 @@ class Newton {
     }
     // Shorten the prediction until no element is inverted; the boundary move itself stays whole.
     Stopwatch w{t_.lineSearch};
-    for (double alpha = 1.0; alpha > 1e-3; alpha *= 0.5) {
+    int rounds = 0;
+    if (SimState trial = moved; untangledPrediction(dz, trial, rounds)) {
+      x = std::move(trial);
+      // After untangling the state is no multiple of dz: no error estimate.
+      step = rounds == 0 ? coupling_.stepNorm(dz) : std::numeric_limits<double>::infinity();
+      return true;
+    }
+    for (double alpha = 0.5; alpha > 1e-3; alpha *= 0.5) {
       SimState trial = moved;
       coupling_.step(dz, alpha, trial);
       if (std::isfinite(model_.totalEnergy(trial))) {
@@ -176,6 +187,43 @@ class Newton {
     }
     fail(rep, "moving the boundary this far in one substep inverts elements", false);
     return false;
+  }
+
+  // The whole prediction, with the few elements it turns over (a flat tet the linear step flips,
+  // away from the bone) untangled: each free node of one moves to the mean of its neighbours,
+  // a few rounds. Where only a sliver fails, this keeps the prediction everywhere else, which a
+  // shorter prediction would lose next to the bone (there the boundary move alone inverts elements).
+  bool untangledPrediction(const Eigen::VectorXd& dz, SimState& trial, int& rounds) {
+    const Eigen::Matrix3Xd before = trial.x;
+    coupling_.step(dz, 1.0, trial);
+    const SoftTissueEnergy& energy = model_.energy();
+    const TetMesh& mesh = energy.mesh();
+    for (rounds = 0;; ++rounds) {
+      std::vector<int> turned;
+      for (int e : energy.activeElements())
+        if (energy.deformationGradient(e, trial.x).determinant() <= 0) turned.push_back(e);
+      if (turned.empty()) return std::isfinite(model_.totalEnergy(trial));
+      if (rounds == kUntangleRounds || turned.size() > kUntangleMaxElements) return false;
+      for (int e : turned)
+        for (int a = 0; a < 4; ++a) {
+          const int n = mesh.tets(a, e);
+          if (coupling_.dof(n, 0) < 0 || coupling_.dof(n, 1) < 0 || coupling_.dof(n, 2) < 0) continue;
+          trial.x.col(n) = before.col(n) + neighbourMean(mesh, n, trial.x - before);
+        }
+    }
+  }
+
+  // Mean of u over the nodes sharing a tetrahedron with node n.
+  static Eigen::Vector3d neighbourMean(const TetMesh& mesh, int n, const Eigen::Matrix3Xd& u) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int count = 0;
+    for (int e = 0; e < mesh.numTets(); ++e) {
+      const auto t = mesh.tets.col(e);
+      if (t[0] != n && t[1] != n && t[2] != n && t[3] != n) continue;
+      for (int a = 0; a < 4; ++a)
+        if (t[a] != n) sum += u.col(t[a]), ++count;
+    }
+    return count > 0 ? Eigen::Vector3d(sum / count) : Eigen::Vector3d(u.col(n));
   }
 
   // Backtracking (Armijo) on the total energy; a trial with an inverted element has infinite
