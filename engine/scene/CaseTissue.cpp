@@ -196,6 +196,7 @@ CaseTissue buildCaseTissue(const CaseSpec& spec, Resolution resolution, const Ca
     in.solids.push_back(readSurface(spec, spec.bones[b].surface, "bones[" + std::to_string(b) + "].surface",
                                     SurfaceRequirement::Closed, t, o));
     in.names.push_back(spec.bones[b].name);
+    in.bones.push_back(static_cast<int>(in.solids.size()) - 1);
   }
   in.skinTriangles = spec.meshing.skinTriangles(resolution);
   in.maxRadiusEdgeRatio = spec.meshing.maxRadiusEdgeRatio;

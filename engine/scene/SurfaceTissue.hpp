@@ -14,7 +14,7 @@
 namespace orthosim {
 
 // Part of the tissue cache key: bump when the meshing changes what it produces.
-constexpr const char* kSurfaceTissueVersion = "surface-tissue-3";
+constexpr const char* kSurfaceTissueVersion = "surface-tissue-4";
 
 struct SurfaceTissueInput {
   SurfaceMesh envelope;             // closed skin envelope (uv optional)
@@ -31,6 +31,11 @@ struct SurfaceTissueInput {
   // The boundary at resolution: meshopt simplification, then needle and cap removal that moves no
   // vertex more than 2 maxCollapseMm (or maxCollapseMm when the bolder pass folds the surface).
   double maxCollapseMm = 1.0;
+  // Indices into `solids` of the bones: their nodes follow the bone (blended near a cut), so a
+  // tetrahedron whose four nodes lie on one of them and whose smallest dihedral angle is below
+  // flatBoneDihedralDeg is replaced by tetrahedra joined to a new free node (mesh/InterfaceSlivers.hpp).
+  std::vector<int> bones;
+  double flatBoneDihedralDeg = 5;
 };
 
 struct SurfaceTissue {
