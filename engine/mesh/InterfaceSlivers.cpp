@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -12,15 +13,19 @@
 namespace orthosim {
 namespace {
 
+constexpr double kGoodDeg = 20;  // new tets this well shaped end the search
+
 double minDihedral(const Eigen::Matrix<double, 3, 4>& x) {
   const auto angles = dihedralAnglesDeg(x);
   return *std::min_element(angles.begin(), angles.end());
 }
 
-// The mesh being edited: tets per node kept up to date, removed tets marked dead.
+// The mesh being edited: tets per node kept up to date, removed tets marked dead, neighbours
+// remembered once found.
 class MeshEdit {
  public:
-  explicit MeshEdit(TetMesh& mesh) : m_(mesh), alive_(mesh.numTets(), 1), nodeTets_(mesh.numNodes()) {
+  explicit MeshEdit(TetMesh& mesh)
+      : m_(mesh), alive_(mesh.numTets(), 1), nodeTets_(mesh.numNodes()), known_(mesh.numTets(), kUnknown) {
     for (int e = 0; e < mesh.numTets(); ++e)
       for (int a = 0; a < 4; ++a) nodeTets_[mesh.tets(a, e)].push_back(e);
   }
@@ -36,13 +41,15 @@ class MeshEdit {
 
   // The tet across the face of e opposite its corner a; -1 on the boundary.
   int neighbour(int e, int a) const {
+    int& known = known_[e][a];
+    if (known != -2) return known;
     const int i = m_.tets((a + 1) % 4, e), j = m_.tets((a + 2) % 4, e), k = m_.tets((a + 3) % 4, e);
+    known = -1;
     for (int t : nodeTets_[i]) {
-      if (t == e) continue;
       const auto has = [&](int n) { return (m_.tets.col(t).array() == n).any(); };
-      if (has(j) && has(k)) return t;
+      if (t != e && has(j) && has(k)) known = t;
     }
-    return -1;
+    return known;
   }
 
   bool usedOutside(int n, const std::set<int>& cavity) const {
@@ -57,6 +64,11 @@ class MeshEdit {
     m_.rest.conservativeResize(3, n + 1);
     m_.rest.col(n) = p;
     nodeTets_.emplace_back();
+    for (int e : cavity)
+      for (int a = 0; a < 4; ++a) {
+        const int next = neighbour(e, a);
+        if (next >= 0 && !cavity.count(next)) known_[next] = kUnknown;  // it will face a new tet
+      }
     for (int e : cavity) {
       alive_[e] = 0;
       for (int a = 0; a < 4; ++a) {
@@ -73,6 +85,7 @@ class MeshEdit {
         nodeTets_[m_.tets(a, e)].push_back(e);
       }
       alive_.push_back(1);
+      known_.push_back(kUnknown);
     }
   }
 
@@ -85,9 +98,11 @@ class MeshEdit {
   }
 
  private:
+  static constexpr std::array<int, 4> kUnknown{-2, -2, -2, -2};
   TetMesh& m_;
   std::vector<char> alive_;
   std::vector<std::vector<int>> nodeTets_;
+  mutable std::vector<std::array<int, 4>> known_;  // -2: not looked up yet
 };
 
 // Whether p lies strictly inside the circumsphere of the tet with corners x.
@@ -113,65 +128,80 @@ struct Insertion {
   int shut = -1;                      // a made tet whose outer face is inside the mesh and all bone; -1: none
 };
 
-// The cavity's outer faces joined to p. Shrinks the cavity (keeping what stays joined to the seed)
-// until p sees each outer face from inside; invalid when that would drop the seed, when the new
-// tets do not fill the cavity's volume, or when a node would be left out.
-Insertion fill(const MeshEdit& edit, const std::vector<char>& onBone, std::set<int> cavity, int seed,
-               const Eigen::Vector3d& p) {
-  Insertion ins;
-  for (;;) {
-    ins.made.clear();
-    ins.across.clear();
-    double cavityVolume = 0, madeVolume = 0;
-    int hidden = -1;
-    for (int e : cavity) {
-      const Eigen::Matrix<double, 3, 4> x = edit.corners(e);
-      cavityVolume += volume(x);
-      const double scale = (x.col(1) - x.col(0)).norm();
-      for (int a = 0; a < 4 && hidden < 0; ++a) {
-        const int n = edit.neighbour(e, a);
-        if (n >= 0 && cavity.count(n)) continue;
-        Eigen::Matrix<double, 3, 4> y = x;  // corner a replaced by p keeps the orientation
-        y.col(a) = p;
-        if (volume(y) <= 1e-9 * std::pow(scale, 3)) hidden = e;
-        Eigen::Vector4i t = edit.mesh().tets.col(e);
-        t[a] = -1;
-        ins.made.push_back(t);
-        ins.across.push_back(n);
-        madeVolume += volume(y);
-      }
-      if (hidden >= 0) break;
+// The cavity's tets still joined to the seed through each other.
+std::set<int> joinedTo(const MeshEdit& edit, const std::set<int>& cavity, int seed) {
+  std::set<int> joined{seed};
+  std::vector<int> stack{seed};
+  while (!stack.empty()) {
+    const int e = stack.back();
+    stack.pop_back();
+    for (int a = 0; a < 4; ++a) {
+      const int n = edit.neighbour(e, a);
+      if (n >= 0 && cavity.count(n) && joined.insert(n).second) stack.push_back(n);
     }
-    if (hidden == seed) return ins;
-    if (hidden < 0) {
-      if (std::abs(madeVolume - cavityVolume) > 1e-9 * cavityVolume) return ins;
-      break;
-    }
-    cavity.erase(hidden);
-    std::set<int> joined{seed};
-    std::vector<int> stack{seed};
-    while (!stack.empty()) {
-      const int e = stack.back();
-      stack.pop_back();
-      for (int a = 0; a < 4; ++a) {
-        const int n = edit.neighbour(e, a);
-        if (n >= 0 && cavity.count(n) && joined.insert(n).second) stack.push_back(n);
-      }
-    }
-    cavity = std::move(joined);
   }
+  return joined;
+}
+
+// Joins p to the cavity's outer faces into ins.made. Returns the cavity tets with an outer face p
+// does not see from inside; ins.made is complete when there are none.
+std::vector<int> joinFaces(const MeshEdit& edit, const std::set<int>& cavity, const Eigen::Vector3d& p,
+                           Insertion& ins) {
+  ins.made.clear();
+  ins.across.clear();
+  std::vector<int> hidden;
+  for (int e : cavity) {
+    const Eigen::Matrix<double, 3, 4> x = edit.corners(e);
+    const double scale = (x.col(1) - x.col(0)).norm();
+    for (int a = 0; a < 4; ++a) {
+      const int n = edit.neighbour(e, a);
+      if (n >= 0 && cavity.count(n)) continue;
+      Eigen::Matrix<double, 3, 4> y = x;  // corner a replaced by p keeps the orientation
+      y.col(a) = p;
+      if (volume(y) <= 1e-9 * std::pow(scale, 3)) {
+        hidden.push_back(e);
+        break;
+      }
+      Eigen::Vector4i t = edit.mesh().tets.col(e);
+      t[a] = -1;
+      ins.made.push_back(t);
+      ins.across.push_back(n);
+    }
+  }
+  return hidden;
+}
+
+// Whether the new tets fill the cavity's volume (p inside it, seeing every outer face).
+bool fillsVolume(const MeshEdit& edit, const std::set<int>& cavity, const Eigen::Vector3d& p,
+                 const std::vector<Eigen::Vector4i>& made) {
+  double cavityVolume = 0, madeVolume = 0;
+  for (int e : cavity) cavityVolume += volume(edit.corners(e));
+  for (const Eigen::Vector4i& t : made) {
+    Eigen::Matrix<double, 3, 4> y;
+    for (int a = 0; a < 4; ++a) y.col(a) = t[a] < 0 ? p : edit.node(t[a]);
+    madeVolume += volume(y);
+  }
+  return std::abs(madeVolume - cavityVolume) <= 1e-9 * cavityVolume;
+}
+
+// Every node of the cavity stays in the mesh, and p is joined to a free one (else it would hang
+// among bone nodes only).
+bool keepsNodesAndReachesFree(const MeshEdit& edit, const std::vector<char>& onBone, const std::set<int>& cavity,
+                              const std::vector<Eigen::Vector4i>& made) {
   std::set<int> used;
-  for (const Eigen::Vector4i& t : ins.made)
+  for (const Eigen::Vector4i& t : made)
     for (int a = 0; a < 4; ++a) used.insert(t[a]);
   for (int e : cavity)
     for (int a = 0; a < 4; ++a) {
       const int n = edit.mesh().tets(a, e);
-      if (!used.count(n) && !edit.usedOutside(n, cavity)) return ins;  // p would swallow it
+      if (!used.count(n) && !edit.usedOutside(n, cavity)) return false;
     }
-  bool joinsFree = false;  // else the node would hang among bone nodes only
-  for (int n : used) joinsFree = joinsFree || (n >= 0 && !onBone[n]);
-  if (!joinsFree) return ins;
-  ins.cavity = std::move(cavity);
+  return std::any_of(used.begin(), used.end(), [&](int n) { return n >= 0 && !onBone[n]; });
+}
+
+// The worst new tet by its smallest dihedral angle, and one whose outer face is inside the mesh
+// with every node on a bone.
+void rate(const MeshEdit& edit, const std::vector<char>& onBone, const Eigen::Vector3d& p, Insertion& ins) {
   ins.worstDeg = 180;
   for (size_t k = 0; k < ins.made.size(); ++k) {
     Eigen::Matrix<double, 3, 4> y;
@@ -185,6 +215,24 @@ Insertion fill(const MeshEdit& edit, const std::vector<char>& onBone, std::set<i
     for (int a = 0; a < 4; ++a) bone = bone && (ins.made[k][a] < 0 || onBone[ins.made[k][a]]);
     if (bone) ins.shut = static_cast<int>(k);
   }
+}
+
+// The cavity's outer faces joined to p, the cavity shrunk (keeping what stays joined to the seed)
+// until p sees each from inside. Invalid (worstDeg -1) when that would drop the seed, when the new
+// tets do not fill the cavity's volume, or when keepsNodesAndReachesFree fails.
+Insertion fill(const MeshEdit& edit, const std::vector<char>& onBone, std::set<int> cavity, int seed,
+               const Eigen::Vector3d& p) {
+  Insertion ins;
+  for (;;) {
+    const std::vector<int> hidden = joinFaces(edit, cavity, p, ins);
+    if (hidden.empty()) break;
+    for (int e : hidden) cavity.erase(e);
+    if (!cavity.count(seed)) return ins;
+    cavity = joinedTo(edit, cavity, seed);
+  }
+  if (!fillsVolume(edit, cavity, p, ins.made) || !keepsNodesAndReachesFree(edit, onBone, cavity, ins.made)) return ins;
+  ins.cavity = std::move(cavity);
+  rate(edit, onBone, p, ins);
   return ins;
 }
 
@@ -194,8 +242,8 @@ Insertion fill(const MeshEdit& edit, const std::vector<char>& onBone, std::set<i
 // instead). The best valid filling that shuts p in nowhere; worstDeg -1 if none.
 Insertion tryInsert(const MeshEdit& edit, const std::vector<char>& onBone, int seed, const std::set<int>& pocket,
                     const Eigen::Vector3d& p, double goodDeg) {
-  constexpr size_t kMaxCavity = 400;
-  constexpr int kMaxWidening = 24;
+  constexpr size_t kMaxCavity = 200;
+  constexpr int kMaxWidening = 12;
   std::set<int> cavity = pocket;
   std::vector<int> todo(pocket.begin(), pocket.end());
   while (!todo.empty()) {
@@ -323,11 +371,12 @@ SliverSplitReport splitTets(TetMesh& mesh, const std::vector<int>& tets,
     Eigen::Vector3d at = Eigen::Vector3d::Zero();
     const std::set<int> around = pocket(edit, onBone, e);
     for (const Eigen::Vector3d& p : candidates(edit, e, around, onBone)) {
-      Insertion ins = tryInsert(edit, onBone, e, around, p, 20.0);
+      Insertion ins = tryInsert(edit, onBone, e, around, p, kGoodDeg);
       if (ins.worstDeg > best.worstDeg) {
         best = std::move(ins);
         at = p;
       }
+      if (best.worstDeg >= kGoodDeg) break;
     }
     if (!(best.worstDeg > 0)) continue;
     edit.replace(best.cavity, best.made, at);

@@ -112,8 +112,9 @@ std::string splitFlatBoneTets(TetMesh& mesh, const LabelledSurface& boundary, co
     validateMesh(mesh, "splitting flat tetrahedra on the bones");
     added += split.nodesAdded;
     worst = std::min(worst, split.worstNewDeg);
+    const size_t had = flat.size();
     flat = flatTetsOnOneSet(mesh, bones, in.flatBoneDihedralDeg);
-    if (split.nodesAdded == 0) break;
+    if (flat.size() >= had) break;
   }
   how << " removed by " << added << " new nodes (smallest dihedral of their tetrahedra " << worst << " deg), "
       << flat.size() << " left";
