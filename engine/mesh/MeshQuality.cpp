@@ -25,13 +25,19 @@ double dihedralDeg(const Eigen::Vector3d& xi, const Eigen::Vector3d& xj, const E
 
 }  // namespace
 
-std::array<double, 6> dihedralAnglesDeg(const TetMesh& mesh, int e) {
+std::array<double, 6> dihedralAnglesDeg(const Eigen::Matrix<double, 3, 4>& x) {
   // Edge (i, j) and the two other vertices (k, l).
   static const int edges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
-  auto x = [&](int a) -> Eigen::Vector3d { return mesh.rest.col(mesh.tets(a, e)); };
   std::array<double, 6> angles;
-  for (int k = 0; k < 6; ++k) angles[k] = dihedralDeg(x(edges[k][0]), x(edges[k][1]), x(edges[k][2]), x(edges[k][3]));
+  for (int k = 0; k < 6; ++k)
+    angles[k] = dihedralDeg(x.col(edges[k][0]), x.col(edges[k][1]), x.col(edges[k][2]), x.col(edges[k][3]));
   return angles;
+}
+
+std::array<double, 6> dihedralAnglesDeg(const TetMesh& mesh, int e) {
+  Eigen::Matrix<double, 3, 4> x;
+  for (int a = 0; a < 4; ++a) x.col(a) = mesh.rest.col(mesh.tets(a, e));
+  return dihedralAnglesDeg(x);
 }
 
 double radiusEdgeRatio(const TetMesh& mesh, int e) {

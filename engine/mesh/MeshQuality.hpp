@@ -22,6 +22,8 @@ struct MeshQuality {
 
 // The six interior dihedral angles of tet e at rest (degrees), at its edges 01, 02, 03, 12, 13, 23.
 std::array<double, 6> dihedralAnglesDeg(const TetMesh& mesh, int e);
+// The same for a tet given by its corners (columns).
+std::array<double, 6> dihedralAnglesDeg(const Eigen::Matrix<double, 3, 4>& corners);
 // Circumradius over shortest edge of tet e at rest; infinite for a flat tet.
 double radiusEdgeRatio(const TetMesh& mesh, int e);
 

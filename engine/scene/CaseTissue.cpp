@@ -191,13 +191,12 @@ CaseTissue buildCaseTissue(const CaseSpec& spec, Resolution resolution, const Ca
     in.solids.push_back(readSurface(spec, spec.cavities[k], "tissue.cavities[" + std::to_string(k) + "]",
                                     SurfaceRequirement::Closed, t, o));
     in.names.push_back(fs::path(spec.cavities[k]).stem().string());
-    in.bone.push_back(false);
   }
   for (size_t b = 0; b < spec.bones.size(); ++b) {
     in.solids.push_back(readSurface(spec, spec.bones[b].surface, "bones[" + std::to_string(b) + "].surface",
                                     SurfaceRequirement::Closed, t, o));
     in.names.push_back(spec.bones[b].name);
-    in.bone.push_back(true);
+    in.bones.push_back(static_cast<int>(in.solids.size()) - 1);
   }
   in.skinTriangles = spec.meshing.skinTriangles(resolution);
   in.maxRadiusEdgeRatio = spec.meshing.maxRadiusEdgeRatio;

@@ -9,6 +9,7 @@
 
 #include "mesh/BoundaryFaces.hpp"
 #include "mesh/CavityPoints.hpp"
+#include "mesh/InterfaceSlivers.hpp"
 #include "mesh/LongEdgeSplit.hpp"
 #include "mesh/SurfaceCleanup.hpp"
 #include "mesh/SurfaceDistance.hpp"
@@ -100,15 +101,18 @@ std::vector<std::vector<int>> labelNodes(const LabelledSurface& surface, const T
   return out;
 }
 
+// Label l > 0 is solid l - 1: a bone when `bones` lists it.
+bool isBoneLabel(int label, const std::vector<int>& bones) {
+  return label > 0 && std::find(bones.begin(), bones.end(), label - 1) != bones.end();
+}
+
 // Vertices on a bone: edges there are not split, since a new free node next to a bone can make a
 // flat tetrahedron with three bonded ones that the first move of the bone turns over.
-std::vector<bool> boneVertices(const LabelledSurface& s, const std::vector<bool>& bone) {
+std::vector<bool> boneVertices(const LabelledSurface& s, const std::vector<int>& bones) {
   std::vector<bool> on(s.surface.numVertices(), false);
-  for (int t = 0; t < s.surface.numTriangles(); ++t) {
-    const int l = s.label[t];
-    if (l > 0 && static_cast<size_t>(l - 1) < bone.size() && bone[l - 1])
+  for (int t = 0; t < s.surface.numTriangles(); ++t)
+    if (isBoneLabel(s.label[t], bones))
       for (int c = 0; c < 3; ++c) on[s.surface.triangles(c, t)] = true;
-  }
   return on;
 }
 
@@ -117,10 +121,36 @@ std::vector<bool> boneVertices(const LabelledSurface& s, const std::vector<bool>
 EdgeSizing freeSurfaceSizing(const SurfaceTissueInput& in, const SimplifyReport& simplified) {
   const EdgeSizing target =
       targetEdgeSizing(simplified.plainSkinTrianglesPerArea, in.interfaceDensity, in.refine, kMaxEdgeFactor);
-  return [target, bone = in.bone](const Eigen::Vector3d& at, int label) {
-    const bool rigid = label > 0 && static_cast<size_t>(label - 1) < bone.size() && bone[label - 1];
-    return rigid ? std::numeric_limits<double>::infinity() : target(at, label);
+  return [target, bones = in.bones](const Eigen::Vector3d& at, int label) {
+    return isBoneLabel(label, bones) ? std::numeric_limits<double>::infinity() : target(at, label);
   };
+}
+
+// Flat tetrahedra on one bone (mesh/InterfaceSlivers.hpp) removed by a free node each, in up to
+// three rounds (a cavity that could not be emptied may be after its neighbours were). Returns the
+// report's words.
+std::string splitFlatBoneTets(TetMesh& mesh, const LabelledSurface& boundary, const SurfaceTissueInput& in) {
+  const auto byLabel = labelNodes(boundary, mesh, static_cast<int>(in.solids.size()) + 1);
+  std::vector<std::vector<int>> bones;
+  for (int b : in.bones) bones.push_back(byLabel.at(b + 1));
+  std::vector<int> flat = flatTetsOnOneSet(mesh, bones, in.flatBoneDihedralDeg);
+  if (flat.empty()) return "";
+  std::ostringstream how;
+  how << ", " << flat.size() << " flat tetrahedra on one bone";
+  int added = 0;
+  double worst = 180;
+  for (int round = 0; round < 3 && !flat.empty(); ++round) {
+    const SliverSplitReport split = splitTets(mesh, flat, bones);
+    validateMesh(mesh, "splitting flat tetrahedra on the bones");
+    added += split.nodesAdded;
+    worst = std::min(worst, split.worstNewDeg);
+    const size_t had = flat.size();
+    flat = flatTetsOnOneSet(mesh, bones, in.flatBoneDihedralDeg);
+    if (flat.size() >= had) break;
+  }
+  how << " removed by " << added << " new nodes (smallest dihedral of their tetrahedra " << worst << " deg), "
+      << flat.size() << " left";
+  return how.str();
 }
 
 }  // namespace
@@ -169,7 +199,7 @@ SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
     LongEdgeSplitReport split;
     if (simplified.plainSkinTrianglesPerArea > 0)
       candidate =
-          splitLongEdges(candidate, freeSurfaceSizing(in, simplified), boneVertices(candidate, in.bone), &split);
+          splitLongEdges(candidate, freeSurfaceSizing(in, simplified), boneVertices(candidate, in.bones), &split);
     boundarySeconds += since(t0);
     t0 = Clock::now();
     try {
@@ -192,6 +222,9 @@ SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
     break;
   }
   if (!meshed) throw std::runtime_error(lastError);
+  t0 = Clock::now();
+  how << splitFlatBoneTets(out.mesh, boundary, in);
+  const double splitSeconds = since(t0);
   int skin = 0;
   for (int l : boundary.label) skin += l == 0;
   out.skinTriangles = skin;
@@ -204,7 +237,8 @@ SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
   std::ostringstream s;
   s << "boundary: " << full.surface.numTriangles() << " triangles at full resolution (" << out.skin.numTriangles()
     << " skin), " << how.str() << "; " << tetgen.holes.cols() << " enclosed cavities; boolean " << booleanSeconds
-    << " s, boundary " << boundarySeconds << " s, tetgen " << tetgenSeconds << " s";
+    << " s, boundary " << boundarySeconds << " s, tetgen " << tetgenSeconds << " s, flat bone tetrahedra "
+    << splitSeconds << " s";
   out.report.push_back(s.str());
   return out;
 }

@@ -14,15 +14,12 @@
 namespace orthosim {
 
 // Part of the tissue cache key: bump when the meshing changes what it produces.
-constexpr const char* kSurfaceTissueVersion = "surface-tissue-4";
+constexpr const char* kSurfaceTissueVersion = "surface-tissue-5";
 
 struct SurfaceTissueInput {
   SurfaceMesh envelope;             // closed skin envelope (uv optional)
   std::vector<SurfaceMesh> solids;  // closed bones and cavities, subtracted
   std::vector<std::string> names;   // per solid, for messages
-  // Per solid: a bone, whose interface moves rigidly (its long edges are not split), or air.
-  // Empty: all air.
-  std::vector<bool> bone;
   int skinTriangles = 3000;
   std::vector<RefineRegion> refine;
   double interfaceDensity = 0.5;    // bone and cavity surfaces: triangles per area relative to the skin
@@ -34,6 +31,12 @@ struct SurfaceTissueInput {
   // The boundary at resolution: meshopt simplification, then needle and cap removal that moves no
   // vertex more than 2 maxCollapseMm (or maxCollapseMm when the bolder pass folds the surface).
   double maxCollapseMm = 1.0;
+  // Indices into `solids` of the bones (the rest are air): their interfaces move rigidly, so their
+  // long edges are not split, and their nodes follow the bone (blended near a cut), so a
+  // tetrahedron whose four nodes lie on one of them and whose smallest dihedral angle is below
+  // flatBoneDihedralDeg is replaced by tetrahedra joined to a new free node (mesh/InterfaceSlivers.hpp).
+  std::vector<int> bones;
+  double flatBoneDihedralDeg = 5;
 };
 
 struct SurfaceTissue {
