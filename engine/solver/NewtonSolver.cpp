@@ -190,8 +190,8 @@ class Newton {
   }
 
   // The whole prediction, with the few elements it turns over (a flat tet the linear step flips,
-  // away from the bone) untangled: each free node of one moves to the mean of its neighbours,
-  // a few rounds. Where only a sliver fails, this keeps the prediction everywhere else, which a
+  // away from the bone) untangled: each free node of one takes its neighbours' mean predicted
+  // displacement, a few rounds. Where only a sliver fails, this keeps the prediction everywhere else, which a
   // shorter prediction would lose next to the bone (there the boundary move alone inverts elements).
   bool untangledPrediction(const Eigen::VectorXd& dz, SimState& trial, int& rounds) {
     const Eigen::Matrix3Xd before = trial.x;
@@ -208,22 +208,24 @@ class Newton {
         for (int a = 0; a < 4; ++a) {
           const int n = mesh.tets(a, e);
           if (coupling_.dof(n, 0) < 0 || coupling_.dof(n, 1) < 0 || coupling_.dof(n, 2) < 0) continue;
-          trial.x.col(n) = before.col(n) + neighbourMean(mesh, n, trial.x - before);
+          trial.x.col(n) = before.col(n) + neighbourDisplacement(mesh, n, trial.x, before);
         }
     }
   }
 
-  // Mean of u over the nodes sharing a tetrahedron with node n.
-  static Eigen::Vector3d neighbourMean(const TetMesh& mesh, int n, const Eigen::Matrix3Xd& u) {
+  // Mean displacement (x - before) of the nodes sharing a tetrahedron with node n. Scans the mesh:
+  // called for the nodes of at most kUntangleMaxElements elements, a few rounds.
+  static Eigen::Vector3d neighbourDisplacement(const TetMesh& mesh, int n, const Eigen::Matrix3Xd& x,
+                                               const Eigen::Matrix3Xd& before) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     int count = 0;
     for (int e = 0; e < mesh.numTets(); ++e) {
       const auto t = mesh.tets.col(e);
       if (t[0] != n && t[1] != n && t[2] != n && t[3] != n) continue;
       for (int a = 0; a < 4; ++a)
-        if (t[a] != n) sum += u.col(t[a]), ++count;
+        if (t[a] != n) sum += x.col(t[a]) - before.col(t[a]), ++count;
     }
-    return count > 0 ? Eigen::Vector3d(sum / count) : Eigen::Vector3d(u.col(n));
+    return count > 0 ? Eigen::Vector3d(sum / count) : Eigen::Vector3d(x.col(n) - before.col(n));
   }
 
   // Backtracking (Armijo) on the total energy; a trial with an inverted element has infinite
