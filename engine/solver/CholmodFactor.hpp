@@ -16,6 +16,9 @@ class CholmodFactor {
 
   // Symbolic analysis of the lower triangle `lower`; its pattern must not change afterwards.
   void analyze(const Eigen::SparseMatrix<double>& lower);
+  // The symbolic analysis of `other` (analysed already), for a matrix of the same pattern: saves
+  // analysing it again.
+  void analyzeLike(const CholmodFactor& other);
   // Numeric factorisation; false when the matrix is not positive definite.
   bool factorize(const Eigen::SparseMatrix<double>& lower);
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;

@@ -31,7 +31,7 @@ Model::Model(Scene scene) : scene_(std::move(scene)) {
   // (Elastic only: contact must not hide tissue that nothing holds.)
   const SimState rest = restState();
   system_->assemble(rest, energy_->gradient(rest.x), false);
-  restFactor_.analyze(system_->matrix());
+  restFactor_.analyzeLike(factor_);
   if (!restFactor_.factorize(system_->matrix()))
     throw std::invalid_argument(
         "part of the tissue is held by nothing (the stiffness matrix at rest is singular): "
