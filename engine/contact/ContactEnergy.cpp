@@ -38,6 +38,7 @@ std::vector<ActiveContact> ContactEnergy::active(const Eigen::Matrix3Xd& x, cons
       if (hit.distance >= 0) continue;
       ActiveContact c;
       c.node = pair.nodes[k];
+      c.fragment = pair.fragment;
       c.distance = hit.distance;
       c.normal = pose.R * hit.normal;
       c.curvature = pose.R * hit.curvature * pose.R.transpose();

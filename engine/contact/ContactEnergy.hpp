@@ -33,6 +33,7 @@ struct ContactPair {
 
 struct ActiveContact {
   int node = -1;
+  int fragment = -1;                          // the surface's fragment (ContactPair::fragment)
   double distance = 0;                        // signed distance to the surface, < 0
   Eigen::Vector3d normal;                     // outward, world frame: the gradient of `distance`
   Eigen::Matrix3d curvature;                  // Hessian of `distance`, world frame

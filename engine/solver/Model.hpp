@@ -62,10 +62,12 @@ class Model {
   // others keep the pose they have in `start`; fixed displacements are fully applied.
   PlanTargets targetsFromPlan(const std::map<std::string, FragmentMotion>& plan, const SimState& start) const;
 
+  // The contacts of state s (empty without contact pairs); not thread-safe (the contact memo).
+  std::vector<ActiveContact> activeContacts(const SimState& s) const;
+
  private:
   std::vector<int> elementsWithFreedom() const;
   void buildContact();
-  std::vector<ActiveContact> activeContacts(const SimState& s) const;
 
   Scene scene_;
   std::unique_ptr<SoftTissueEnergy> energy_;

@@ -11,10 +11,12 @@
 
 #include "contact/RigidSurface.hpp"
 #include "eval/LandmarkError.hpp"
+#include "math/Angles.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseModel.hpp"
+#include "solver/LinearResponse.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace fs = std::filesystem;
@@ -287,6 +289,52 @@ TEST_F(PhantomCase, CoarseSetbackPutsLipsAndChinWithinOneMillimetreOfTheFine) {
   }
   EXPECT_GT(moved[0].error.norm(), 5.0);  // the lower lip really went back with the chin
   EXPECT_GT(moved[2].error.norm(), 8.0);
+}
+
+// The live-drag view (issue 19): from the converged 10 mm setback, where tissue presses on the
+// mandible, a further step of the maxilla (0.5 mm forward, 0.3 mm up, 0.5 degrees of pitch) and the
+// mandible (0.5 mm back) shown by the linear response lands close to the converged answer, at the
+// lips and chin too.
+TEST_F(PhantomCase, LinearResponseOfAHalfMillimetreStepLandsNearTheConvergedFace) {
+  Scene scene = coarse().scene;
+  scene.plan.clear();
+  scene.plan["mandible"].translation = 10.0 * -spec().frame.anterior;
+  Model model(scene);
+  const SolveResult start = solveScene(model);
+  ASSERT_TRUE(start.converged) << start.error;
+  const AnatomicalFrame& f = spec().frame;
+  Eigen::Matrix3d axes;
+  axes << f.anterior, f.superior, f.right;
+  const int maxilla = *model.scene().fragmentIndex("maxilla"), mandible = *model.scene().fragmentIndex("mandible");
+  std::vector<PoseParameter> params =
+      poseParameters(maxilla, axes, start.state.fragments[maxilla].apply(spec().landmarks.at("PNS")));
+  for (const PoseParameter& p :
+       poseParameters(mandible, axes, start.state.fragments[mandible].apply(spec().landmarks.at("pogonion"))))
+    params.push_back(p);
+  ASSERT_FALSE(model.activeContacts(start.state).empty());
+  const LinearResponse response(model, start.state, params);
+  Eigen::VectorXd delta = Eigen::VectorXd::Zero(12);
+  delta[0] = 0.5, delta[1] = 0.3, delta[5] = 0.5 * kDeg, delta[6] = -0.5;
+  PlanTargets targets;
+  targets.boundary = {movedPoses(start.state.fragments, params, delta), start.state.fixedScale};
+  targets.centers.assign(targets.boundary.fragments.size(), Eigen::Vector3d::Zero());
+  const SolveResult exact = solvePlan(model, start.state, targets, model.scene().solver);
+  ASSERT_TRUE(exact.converged) << exact.error;
+  const SurfaceMesh base = coarse().deformedSkin(start.state.x), converged = coarse().deformedSkin(exact.state.x),
+                    linear = coarse().deformedSkin(response.at(delta).x);
+  const double moved = (converged.vertices - base.vertices).colwise().norm().maxCoeff();
+  const double error = (linear.vertices - converged.vertices).colwise().norm().maxCoeff();
+  const std::vector<std::string> lips = {"labrale_superius", "labrale_inferius", "stomion", "soft_pogonion"};
+  const auto lipError = landmarkErrors(lips, spec().landmarks, f, {coarse().tissue.skin, linear, converged});
+  std::cout << "skin moved up to " << moved << " mm; linear - converged max " << error << " mm";
+  for (size_t k = 0; k < lips.size(); ++k) std::cout << ", " << lips[k] << " " << lipError[k].error.norm();
+  std::cout << " mm\n";
+  EXPECT_GT(moved, 0.4);
+  EXPECT_LT(error, 0.1 * moved);
+  for (size_t k = 0; k < lips.size(); ++k) {
+    ASSERT_EQ(lipError[k].status, LandmarkStatus::Measured) << lips[k];
+    EXPECT_LT(lipError[k].error.norm(), 0.05) << lips[k];
+  }
 }
 
 }  // namespace
