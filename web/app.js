@@ -1,12 +1,13 @@
-// The planning page: talks to orthosim serve over /ws (docs/protocol.md), shows the streamed
-// frames, and keeps the server's newest-wins previews fed without flooding it: while a preview is
-// being solved, slider moves only update the pending pose, which is sent when the answer comes.
+// The planning page: talks to orthosim serve over /ws (docs/protocol.md) and shows the streamed
+// frames. While a slider moves, the poses go out every SEND_INTERVAL_MS at most: the server draws
+// each at once from the linear response of its last converged preview ("linear") and solves the
+// newest one ("converged" replaces it), so the face follows the hand without a backlog.
 "use strict";
 
 const AXES = [
-  { key: "anterior_mm", label: "Advancement (+) / setback (−)", unit: "mm", range: 15, step: 0.1 },
-  { key: "superior_mm", label: "Impaction (+) / downgraft (−)", unit: "mm", range: 15, step: 0.1 },
-  { key: "right_mm", label: "Lateral shift (right +)", unit: "mm", range: 15, step: 0.1 },
+  { key: "anterior_mm", label: "Advancement (+) / setback (−)", unit: "mm", range: 15, step: 0.5 },
+  { key: "superior_mm", label: "Impaction (+) / downgraft (−)", unit: "mm", range: 15, step: 0.5 },
+  { key: "right_mm", label: "Lateral shift (right +)", unit: "mm", range: 15, step: 0.5 },
   { key: "pitch_deg", label: "Pitch (front up +)", unit: "°", range: 15, step: 0.5 },
   { key: "roll_deg", label: "Roll (right side up +)", unit: "°", range: 15, step: 0.5 },
   { key: "yaw_deg", label: "Yaw (front to right +)", unit: "°", range: 15, step: 0.5 },
@@ -20,9 +21,10 @@ const LANDMARK_NAMES = {
 const $ = (id) => document.getElementById(id);
 const state = {
   ws: null, caseId: null, fragments: [], poses: {}, limits: { translation_mm: 30, rotation_deg: 30 },
-  previewInFlight: false, posesDirty: false, job: null, nextId: 1, viewInFlight: false, pendingView: null,
-  lastFrameUrl: null,
+  posesDirty: false, sendTimer: null, lastSend: -Infinity, job: null, nextId: 1, viewInFlight: false,
+  pendingView: null, lastFrameUrl: null, frameTimes: [], lastSolve: null,
 };
+const SEND_INTERVAL_MS = 50;  // at most 20 pose updates a second while dragging
 
 function token() {
   const p = new URLSearchParams(location.hash.slice(1) || location.search.slice(1));
@@ -75,7 +77,9 @@ const handlers = {
   poses: (m) => showWarnings(m.warnings || []),
   loaded: (m) => { state.poses = m.poses; renderFragments(); say(`plan "${m.name}" loaded`); },
   preview: (m) => onPreview(m),
-  preview_failed: (m) => { previewAnswered(); say(m.message, "error"); },
+  preview_failed: (m) => { showSolveState(null); say(m.message, "error"); },
+  drag_ready: () => {},
+  drag_unavailable: (m) => say(`the drag view is off until the next preview: ${m.message}`, "error"),
   job_queued: (m) => onJob(m, `queued (${m.position} ahead)`, 0),
   job_progress: (m) => onJob(m, `${m.phase}…`, m.fraction),
   job_done: (m) => onJobDone(m),
@@ -97,11 +101,13 @@ const handlers = {
     a.hidden = false;
   },
   frame: (m) => {
-    $("frame-info").textContent = `${m.view} view, colour map: ${m.colormap}, ${m.width}×${m.height}, drawn in ${m.render_ms.toFixed(0)} ms`;
+    const now = performance.now();
+    state.frameTimes = state.frameTimes.filter((t) => now - t < 1000).concat(now);  // frames in the last second
+    $("frame-info").textContent = `${m.view} view, colour map: ${m.colormap}, ${m.width}×${m.height}, drawn in ${m.render_ms.toFixed(0)} ms, ${state.frameTimes.length} fps`;
+    if (m.shows) showSolveState(m.shows.state);
   },
   error: (m) => {
     if (m.error === "unknown_type" && /view/.test(m.message)) return;  // a server without rendering
-    if (state.previewInFlight && m.path && m.path.startsWith("/poses")) previewAnswered();
     say(m.message, "error");
   },
 };
@@ -189,22 +195,35 @@ function axisControl(fragment, axis) {
   return row;
 }
 
-// Newest wins on the server; here at most one set_poses is in flight and the latest pose follows.
+// Newest wins on the server; here the poses go out at most every SEND_INTERVAL_MS, the last
+// change always (a trailing send).
 function posesChanged() {
-  if (state.previewInFlight) { state.posesDirty = true; return; }
-  state.previewInFlight = true;
+  state.posesDirty = true;
+  if (state.sendTimer) return;
+  const wait = Math.max(0, state.lastSend + SEND_INTERVAL_MS - performance.now());
+  state.sendTimer = setTimeout(flushPoses, wait);
+}
+
+function flushPoses() {
+  state.sendTimer = null;
+  if (!state.posesDirty) return;
   state.posesDirty = false;
+  state.lastSend = performance.now();
   send({ type: "set_poses", poses: state.poses });
 }
 
-function previewAnswered() {
-  state.previewInFlight = false;
-  if (state.posesDirty) posesChanged();
+// What the face shows: the linear drag view while the preview refines, or the converged solve.
+function showSolveState(shown) {
+  const last = state.lastSolve;
+  const solved = last ? `last solve ${last.seconds.toFixed(2)} s at ${last.at}` : "no solve yet";
+  const text = { linear: `linear drag view, refining… (${solved})`, converged: `converged (${solved})`, rest: "rest pose" };
+  $("solve-state").textContent = text[shown] || solved;
+  $("solve-state").dataset.state = shown || "";
 }
 
 function onPreview(m) {
-  previewAnswered();
   const f = m.figures;
+  state.lastSolve = { seconds: f.solve_s, at: new Date().toLocaleTimeString() };
   let rows = "";
   for (const [name, label] of Object.entries(LANDMARK_NAMES)) {
     const l = f.landmarks[name];
@@ -212,7 +231,10 @@ function onPreview(m) {
   }
   $("preview-figures").innerHTML =
     `<p id="solve-time">Solved in <b>${f.solve_s.toFixed(2)} s</b> (${f.iterations} Newton iterations); ` +
-    `skin moved up to ${f.max_skin_displacement_mm.toFixed(1)} mm.</p>` +
+    `skin moved up to ${f.max_skin_displacement_mm.toFixed(1)} mm.` +
+    (f.linear_error ? ` The drag view was off by up to ${f.linear_error.max_mm.toFixed(2)} mm` +
+      (f.linear_error.lips_mm !== undefined ? ` (lips ${f.linear_error.lips_mm.toFixed(2)} mm)` : "") + "." : "") +
+    `</p>` +
     `<table><tr><th>landmark</th><th>forward</th><th>up</th><th>right</th></tr>${rows}</table>`;
   appendSolveWarnings($("preview-figures"), f.warnings);
 }

@@ -71,4 +71,9 @@ Eigen::VectorXd CholmodFactor::solve(const Eigen::VectorXd& rhs) const {
   return impl_->llt.solve(rhs);
 }
 
+Eigen::MatrixXd CholmodFactor::solveMany(const Eigen::MatrixXd& rhs) const {
+  if (!factored_) throw std::logic_error("CholmodFactor::solve without a valid factorisation");
+  return impl_->llt.solve(rhs);
+}
+
 }  // namespace orthosim

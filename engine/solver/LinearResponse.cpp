@@ -55,7 +55,8 @@ std::vector<RigidPose> movedPoses(const std::vector<RigidPose>& poses, const std
   return out;
 }
 
-LinearResponse::LinearResponse(Model& model, const SimState& state, std::vector<PoseParameter> parameters)
+LinearResponse::LinearResponse(Model& model, const SimState& state, std::vector<PoseParameter> parameters,
+                               const SolveControl& control)
     : parameters_(std::move(parameters)), base_(state) {
   const Coupling& coupling = model.coupling();
   std::map<int, Eigen::Vector3d> pivots;
@@ -72,7 +73,7 @@ LinearResponse::LinearResponse(Model& model, const SimState& state, std::vector<
     if (p.rotation && !pivots.emplace(p.fragment, p.pivot).first->second.isApprox(p.pivot))
       throw std::invalid_argument(where + ": a fragment's rotations must share one pivot");
   }
-  // The Hessian at the base itself (Newton's last factorisation was one step before it).
+  if (control.cancelled()) throw ResponseCancelled();
   const Eigen::Matrix3Xd g = model.totalGradient(base_);
   model.assemble(base_, g, false);
   if (!model.factor().factorize(model.system().matrix())) {
@@ -81,15 +82,21 @@ LinearResponse::LinearResponse(Model& model, const SimState& state, std::vector<
     if (!model.factor().factorize(model.system().matrix()))
       throw std::runtime_error("the reduced Hessian at the converged state cannot be factorised");
   }
-  for (size_t k = 0; k < parameters_.size(); ++k) {
-    const Eigen::Matrix3Xd dxc = constrainedMotion(model, static_cast<int>(k));
-    const Eigen::VectorXd rhs = -(model.system().hessianTimes(base_, dxc, projected_) +
-                                  coupling.reduce(contactForceChange(model, static_cast<int>(k)), base_));
-    const Eigen::VectorXd dz = model.factor().solve(rhs);
+  if (control.cancelled()) throw ResponseCancelled();
+  const Eigen::Index n = static_cast<Eigen::Index>(parameters_.size());
+  std::vector<Eigen::Matrix3Xd> dxc(parameters_.size());
+  Eigen::MatrixXd rhs(coupling.numReducedDofs(), n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    dxc[k] = constrainedMotion(model, static_cast<int>(k));
+    rhs.col(k) = -(model.system().hessianTimes(base_, dxc[k], projected_) +
+                   coupling.reduce(contactForceChange(model, static_cast<int>(k)), base_));
+  }
+  const Eigen::MatrixXd dz = model.factor().solveMany(rhs);
+  for (Eigen::Index k = 0; k < n; ++k) {
     SimState plus = base_, minus = base_;
-    coupling.step(dz, kStep, plus);
-    coupling.step(dz, -kStep, minus);
-    columns_.push_back(dxc + (plus.x - minus.x) / (2 * kStep));
+    coupling.step(dz.col(k), kStep, plus);
+    coupling.step(dz.col(k), -kStep, minus);
+    columns_.push_back(dxc[k] + (plus.x - minus.x) / (2 * kStep));
   }
 }
 
@@ -118,6 +125,26 @@ Eigen::Matrix3Xd LinearResponse::contactForceChange(const Model& model, int p) c
     change.col(c.node) += turn - ContactEnergy::hessianBlock(c) * pointVelocity(param, base_.x.col(c.node));
   }
   return change;
+}
+
+Eigen::VectorXd LinearResponse::deltaTo(const std::vector<RigidPose>& poses) const {
+  if (poses.size() != base_.fragments.size())
+    throw std::invalid_argument("poses for " + std::to_string(poses.size()) + " fragments, the state has " +
+                                std::to_string(base_.fragments.size()));
+  Eigen::VectorXd delta(static_cast<Eigen::Index>(parameters_.size()));
+  for (size_t k = 0; k < parameters_.size(); ++k) {
+    const PoseParameter& p = parameters_[k];
+    const RigidPose& from = base_.fragments[p.fragment];
+    const RigidPose& to = poses[p.fragment];
+    const Eigen::Matrix3d turn = to.R * from.R.transpose();
+    // to = T o from with T(y) = c + turn (y - c) + t, c the fragment's pivot.
+    Eigen::Vector3d c = p.pivot;
+    for (const PoseParameter& q : parameters_)
+      if (q.fragment == p.fragment && q.rotation) c = q.pivot;
+    const Eigen::Vector3d t = to.b - c - turn * (from.b - c);
+    delta[k] = p.axis.dot(p.rotation ? vectorFromRotation(turn) : t);
+  }
+  return delta;
 }
 
 SimState LinearResponse::at(const Eigen::VectorXd& delta) const {

@@ -7,9 +7,11 @@
 // forces change when the fragment's surface moves under nodes held still (the contact set frozen).
 // One factorisation of H_zz at z* and one back-substitution per parameter.
 #include <Eigen/Core>
+#include <stdexcept>
 #include <vector>
 
 #include "solver/Model.hpp"
+#include "solver/SolveControl.hpp"
 
 namespace orthosim {
 
@@ -25,13 +27,22 @@ struct PoseParameter {
 // superior, right), then rotations about them through `pivot` (world, at the fragment's current pose).
 std::vector<PoseParameter> poseParameters(int fragment, const Eigen::Matrix3d& axes, const Eigen::Vector3d& pivot);
 
+// A build stopped by its SolveControl's cancel (checked before the factorisation and before the
+// back-substitutions).
+struct ResponseCancelled : std::runtime_error {
+  ResponseCancelled() : std::runtime_error("the linear response was cancelled") {}
+};
+
 class LinearResponse {
  public:
-  // `state` must be a converged state of `model`. Leaves model.factor() holding the factorisation at
-  // `state` (what Newton's predictor uses next). Throws std::invalid_argument for a parameter of an
-  // unknown or free fragment or an axis that is not a unit vector, std::runtime_error when the
-  // Hessian cannot be factorised.
-  LinearResponse(Model& model, const SimState& state, std::vector<PoseParameter> parameters);
+  // `state` must be a converged state of `model`. Factorises the Hessian at `state` (Newton's last
+  // factorisation is from a step or more before it, possibly projected or from a chord iteration's
+  // older state: measured, it can give columns off by far more than their first-order error) and
+  // leaves it in model.factor(), where Newton's predictor uses it next. Throws
+  // std::invalid_argument for a parameter of an unknown or free fragment or an axis that is not a
+  // unit vector, std::runtime_error when the Hessian cannot be factorised.
+  LinearResponse(Model& model, const SimState& state, std::vector<PoseParameter> parameters,
+                 const SolveControl& control = {});
 
   const std::vector<PoseParameter>& parameters() const { return parameters_; }
   const SimState& base() const { return base_; }
@@ -43,6 +54,11 @@ class LinearResponse {
   // The base moved by delta (one entry per parameter): fragment poses exactly, every node to first
   // order.
   SimState at(const Eigen::VectorXd& delta) const;
+  // The delta that takes the base's fragment poses to `poses`: per fragment, the rotation about its
+  // pivot and then the translation that compose into poses[f] o base[f]^-1, in its parameters' axes.
+  // Exact (at(deltaTo(p)).fragments == p) for fragments with all six parameters on orthonormal
+  // axes; fragments without parameters are ignored.
+  Eigen::VectorXd deltaTo(const std::vector<RigidPose>& poses) const;
 
  private:
   Eigen::Matrix3Xd constrainedMotion(const Model& model, int p) const;

@@ -9,6 +9,7 @@
 #include "eval/SkinFigures.hpp"
 #include "render/SurfaceDifference.hpp"
 #include "scene/Osteotomy.hpp"
+#include "session/DragResponse.hpp"
 #include "session/FineJob.hpp"
 #include "session/SavedPlan.hpp"
 #include "session/SkinExport.hpp"
@@ -52,6 +53,14 @@ struct PlanningSession::OpenCase {
   // Guarded by the session's mutex: the newest converged preview, for exports and comparisons.
   std::shared_ptr<const Eigen::Matrix3Xd> previewX;
   Poses previewPoses;
+  std::shared_ptr<const DragResponse> drag;  // its linear response, for frames during a drag
+  std::vector<int> lips;                     // display-skin vertices where the drag error is reported
+
+  std::vector<DragFragment> dragFragments() const {
+    std::vector<DragFragment> out;
+    for (const FragmentInfo& f : fragments) out.push_back({f.name, f.pivot});
+    return out;
+  }
 
   const FragmentInfo* fragment(const std::string& name) const {
     for (const FragmentInfo& f : fragments)
@@ -236,6 +245,7 @@ void PlanningSession::open(MessageReader& r, const json& id) {
           if (cancel) return;
           c->fragments = movableFragments(*c->coarse);
           c->probe = SkinFigureProbe(*c->coarse);
+          c->lips = lipVertices(*c->coarse);
           c->model = std::make_unique<Model>(c->coarse->scene);
           c->lastGood = c->model->restState();
         } catch (const std::exception& e) {
@@ -361,6 +371,7 @@ void PlanningSession::setPoses(MessageReader& r, const json& id) {
       for (std::string& w : unusualPoseWarnings(name, pose)) warnings.push_back(std::move(w));
   }
   reply({{"type", "poses"}, {"poses", std::move(poses)}, {"warnings", warnings}}, id);
+  showLinear(id);
   if (previewAfter) schedulePreview(id);
 }
 
@@ -381,7 +392,28 @@ void PlanningSession::reset(MessageReader& r, const json& id) {
     poses = posesJson();
   }
   reply({{"type", "poses"}, {"poses", std::move(poses)}}, id);
+  showLinear(id);
   if (previewAfter) schedulePreview(id);
+}
+
+// The newest poses drawn at once from the linear response of the last converged preview (no solve;
+// a few vector sums), while the nonlinear preview for them runs.
+void PlanningSession::showLinear(const json& id) {
+  std::shared_ptr<const DragResponse> drag;
+  std::shared_ptr<SessionView> view;
+  std::shared_ptr<OpenCase> c;
+  Poses poses;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    c = open_;
+    if (!c) return;
+    drag = c->drag;
+    view = view_;
+    poses = poses_;
+  }
+  if (!drag || !view) return;
+  view->postState(drag->state(c->plan(poses)), {{"pose_id", id}, {"state", "linear"}, {"preview", drag->preview()}});
+  requestFrame();
 }
 
 void PlanningSession::preview(MessageReader& r, const json& id) {
@@ -456,14 +488,21 @@ void PlanningSession::runPreview(const std::shared_ptr<OpenCase>& c, long long s
                   {"figures", std::move(figures)}},
                  id);
   }
-  c->lastGood = result.state;
+  std::shared_ptr<const DragResponse> drag;
   std::shared_ptr<SessionView> view;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    if (open_ == c) view = view_;
+    drag = c->drag;
+    // A preview superseded while it finished would draw an older pose over the newer linear one.
+    if (open_ == c && seq == previewSeq_) view = view_;
   }
+  if (drag) {  // how far the drag view of these poses was from the converged face
+    figures["linear_error"] = linearErrorJson(*c->coarse, drag->state(plan), result.state, drag->base(), c->lips);
+    figures["linear_error"]["from_preview"] = drag->preview();
+  }
+  c->lastGood = result.state;
   if (view) {
-    view->postState(result.state);
+    view->postState(result.state, {{"pose_id", id}, {"state", "converged"}, {"preview", seq}});
     requestFrame();
   }
   json posesOut = json::object();
@@ -479,9 +518,42 @@ void PlanningSession::runPreview(const std::shared_ptr<OpenCase>& c, long long s
   reply({{"type", "preview"},
          {"preview", seq},
          {"case", c->id},
+         {"state", "converged"},
          {"poses", std::move(posesOut)},
          {"figures", std::move(figures)}},
         id);
+  scheduleDragResponse(c, seq, result.state);
+}
+
+// After a converged preview, its linear response for the drag view: a task of its own that a newer
+// preview supersedes (cancelled before its factorisation or its back-substitutions, or dropped
+// while queued), so that it never delays the solve of a newer pose by more than one factorisation.
+void PlanningSession::scheduleDragResponse(const std::shared_ptr<OpenCase>& c, long long seq, const SimState& state) {
+  auto self = shared_from_this();
+  work_.submit(
+      [self, c, seq, state](const std::atomic<bool>& cancel) {
+        if (cancel) return;
+        SolveControl control;
+        control.cancel = &cancel;
+        try {
+          auto next =
+              std::make_shared<const DragResponse>(*c->model, *c->coarse, c->dragFragments(), state, seq, control);
+          const double seconds = next->seconds();
+          {
+            const std::lock_guard<std::mutex> lock(self->mutex_);
+            c->drag = std::move(next);
+          }
+          self->reply({{"type", "drag_ready"}, {"preview", seq}, {"seconds", seconds}}, nullptr);
+        } catch (const ResponseCancelled&) {  // a newer pose came: its preview schedules its own
+        } catch (const std::exception& e) {   // no drag view from this state; previews go on as before
+          {
+            const std::lock_guard<std::mutex> lock(self->mutex_);
+            c->drag.reset();
+          }
+          self->reply({{"type", "drag_unavailable"}, {"preview", seq}, {"message", e.what()}}, nullptr);
+        }
+      },
+      true);
 }
 
 // ---- fine jobs -------------------------------------------------------------------------------

@@ -58,6 +58,8 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   void exportSkin(MessageReader& r, const nlohmann::json& id);
   void view(MessageReader& r, const nlohmann::json& id);
   void requestFrame();
+  void showLinear(const nlohmann::json& id);
+  void scheduleDragResponse(const std::shared_ptr<OpenCase>& c, long long seq, const SimState& state);
   void postCoarseFineDifference(const CaseModel& coarse, const Eigen::Matrix3Xd& coarseX, const CaseModel& fine,
                                 const Eigen::Matrix3Xd& fineX);
 

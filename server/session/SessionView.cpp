@@ -19,9 +19,10 @@ SessionView::SessionView(std::shared_ptr<const CaseModel> model) : model_(std::m
 
 SessionView::~SessionView() = default;
 
-void SessionView::postState(const SimState& state) {
+void SessionView::postState(const SimState& state, nlohmann::json shows) {
   const std::lock_guard<std::mutex> lock(mutex_);
   pendingState_ = state;
+  pendingShows_ = std::move(shows);
 }
 
 void SessionView::postView(const ViewRequest& request) {
@@ -68,6 +69,7 @@ Frame SessionView::render() {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     state.swap(pendingState_);
+    if (state) shows_ = std::move(pendingShows_);
     std::swap(view, pendingView_);
     difference.swap(pendingDifference_);
   }
@@ -86,7 +88,8 @@ Frame SessionView::render() {
                 {"encode_ms", msSince(t1)},
                 {"bytes", frame.jpeg.size()},
                 {"view", preset_},
-                {"colormap", render::colorMapNames()[static_cast<size_t>(options_.colorMap)]}};
+                {"colormap", render::colorMapNames()[static_cast<size_t>(options_.colorMap)]},
+                {"shows", shows_}};
   return frame;
 }
 

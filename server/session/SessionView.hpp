@@ -25,7 +25,7 @@ namespace orthosim::server {
 
 struct Frame {
   std::vector<unsigned char> jpeg;
-  nlohmann::json info;  // {"width", "height", "render_ms", "encode_ms", "view", "colormap"}
+  nlohmann::json info;  // {"width", "height", "render_ms", "encode_ms", "view", "colormap", "shows"}
 };
 
 class SessionView {
@@ -33,8 +33,9 @@ class SessionView {
   explicit SessionView(std::shared_ptr<const CaseModel> model);
   ~SessionView();
 
-  // Any thread.
-  void postState(const SimState& state);
+  // Any thread. `shows` says what the state is (which pose, linear or converged); every frame
+  // drawn from it carries it in its info.
+  void postState(const SimState& state, nlohmann::json shows);
   void postView(const ViewRequest& request);
   void postDifference(Eigen::VectorXd valuesMm);
 
@@ -48,6 +49,8 @@ class SessionView {
   std::shared_ptr<const CaseModel> model_;
   std::mutex mutex_;  // guards the pending fields
   std::optional<SimState> pendingState_;
+  nlohmann::json pendingShows_;
+  nlohmann::json shows_ = {{"state", "rest"}};  // render thread: what the drawn state is
   ViewRequest pendingView_;
   std::optional<Eigen::VectorXd> pendingDifference_;
 

@@ -76,6 +76,46 @@ TEST_F(PlanningFrames, ABurstOfCameraMovesLeavesNoBacklog) {
   EXPECT_LT(frames, moves) << "frames still waiting are replaced by newer ones";
 }
 
+// The drag view (issue 19): once a preview has converged and its linear response is ready, a new
+// pose is drawn at once from the response (a frame marked "linear" with the set_poses id, no solve),
+// and its preview then reports how far that linear face was from the converged one and draws the
+// converged face (marked "converged").
+TEST_F(PlanningFrames, ADraggedPoseIsDrawnLinearAtOnceThenConverged) {
+  nextFrame(*ws_);
+  const json first = ws_->request({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 2}}}}}});
+  const json preview = ws_->waitFor("preview");
+  EXPECT_EQ(preview["state"], "converged");
+  const json converged = ws_->waitFor([&](const json& m) {
+    return m["type"] == "frame" && m["shows"]["state"] == "converged" && m["shows"]["pose_id"] == first["id"];
+  });
+  EXPECT_EQ(converged["shows"]["preview"], preview["preview"]);
+  const json ready = ws_->waitFor("drag_ready");
+  EXPECT_EQ(ready["preview"], preview["preview"]);
+  EXPECT_GT(ready["seconds"].get<double>(), 0.0);
+
+  const json drag = ws_->request({{"type", "set_poses"},
+                                  {"poses", {{"maxilla", {{"anterior_mm", 2.5}, {"pitch_deg", 0.5}}}}},
+                                  {"preview", false}});
+  const json linear = nextFrame(*ws_);
+  EXPECT_EQ(linear["shows"]["state"], "linear");
+  EXPECT_EQ(linear["shows"]["pose_id"], drag["id"]);
+  EXPECT_EQ(linear["shows"]["preview"], preview["preview"]);
+
+  const json refine = ws_->request({{"type", "preview"}}, 120s);
+  ASSERT_EQ(refine["type"], "preview") << refine.dump();
+  const json& e = refine["figures"]["linear_error"];
+  ASSERT_TRUE(e.is_object()) << refine["figures"].dump();
+  std::cout << "drag step: skin moved up to " << e["moved_mm"] << " mm; linear face off by " << e["max_mm"]
+            << " mm (lips " << e["lips_mm"] << " mm)\n";
+  EXPECT_EQ(e["from_preview"], preview["preview"]);
+  EXPECT_GT(e["moved_mm"].get<double>(), 0.3);
+  EXPECT_LT(e["max_mm"].get<double>(), 0.1 * e["moved_mm"].get<double>());
+  EXPECT_LT(e["lips_mm"].get<double>(), 0.05);
+  const json after = ws_->waitFor([&](const json& m) { return m["type"] == "frame"; });
+  EXPECT_EQ(after["shows"]["state"], "converged");
+  EXPECT_EQ(after["shows"]["pose_id"], refine["id"]);
+}
+
 TEST_F(PlanningFrames, BadViewRequestsAreRefused) {
   ws_->send({{"type", "view"}, {"preset", "upside_down"}});
   json e = ws_->waitFor("error", 10s);

@@ -43,6 +43,10 @@ TEST(CholmodFactor, SolvesLikeEigensSparseCholesky) {
   EXPECT_LT((x - y).norm(), 1e-10 * y.norm());
   const Eigen::SparseMatrix<double> full = A.selfadjointView<Eigen::Lower>();
   EXPECT_LT((full * x - b).norm(), 1e-10 * b.norm());
+  Eigen::MatrixXd B(A.rows(), 3);
+  B << b, -2 * b, Eigen::VectorXd::Ones(A.rows());
+  const Eigen::MatrixXd X = f.solveMany(B);  // several right-hand sides: each as if alone
+  for (int k = 0; k < 3; ++k) EXPECT_LT((X.col(k) - f.solve(B.col(k))).norm(), 1e-12 * X.col(k).norm()) << k;
 }
 
 TEST(CholmodFactor, SharesTheSymbolicAnalysisOfAnotherFactor) {

@@ -4,6 +4,7 @@
 // shrinking fourfold when the pose change halves, and bad parameters named.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <stdexcept>
 
 #include "../contact/Square.hpp"
@@ -151,6 +152,22 @@ TEST(LinearResponse, ContactCarriesTheResponseOfAPlateWithoutTissue) {
   }
 }
 
+TEST(LinearResponse, DeltaToReachesGivenPosesExactly) {
+  Model model(makeBlockScene(Eigen::Vector3i(4, 2, 2)));
+  const SolveResult start = solveScene(model);
+  ASSERT_TRUE(start.converged) << start.error;
+  const int B = *model.scene().fragmentIndex("B");
+  Eigen::Matrix3d axes = rotationFromVector(Eigen::Vector3d(0.3, -0.2, 0.5));  // any orthonormal frame
+  const LinearResponse response(model, start.state, poseParameters(B, axes, Eigen::Vector3d(40, 18, 3)));
+  std::vector<RigidPose> target = start.state.fragments;
+  target[B] = RigidPose::fromMotion({1.5, -2, 0.7}, Eigen::Vector3d(4, -7, 9) * kDeg, {30, 10, 0});
+  const SimState s = response.at(response.deltaTo(target));
+  EXPECT_LT((s.fragments[B].R - target[B].R).norm(), 1e-12);
+  EXPECT_LT((s.fragments[B].b - target[B].b).norm(), 1e-10);
+  EXPECT_LT(response.deltaTo(start.state.fragments).norm(), 1e-12);
+  EXPECT_THROW(response.deltaTo({}), std::invalid_argument);
+}
+
 TEST(LinearResponse, RefusesParametersItCannotAnswer) {
   Model model(makeBlockScene(Eigen::Vector3i(4, 2, 2)));
   const SimState rest = model.restState();
@@ -168,6 +185,10 @@ TEST(LinearResponse, RefusesParametersItCannotAnswer) {
                "share one pivot");
   EXPECT_THROW(movedPoses(rest.fragments, {{1, Eigen::Vector3d::UnitX(), false, {}}}, Eigen::VectorXd(2)),
                std::invalid_argument);
+  std::atomic<bool> cancel{true};  // a newer pose came: the server drops the build
+  SolveControl control;
+  control.cancel = &cancel;
+  EXPECT_THROW(LinearResponse(model, rest, {{1, Eigen::Vector3d::UnitX(), false, {}}}, control), ResponseCancelled);
 }
 
 }  // namespace

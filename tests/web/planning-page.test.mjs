@@ -1,6 +1,6 @@
 // Browser test of the planning page (issue 6): Debian's Chromium, headless, driven by
 // playwright-core, against a real `orthosim serve` started here. Opens the phantom, moves the
-// maxilla advancement slider, sees a new frame and a solve time, confirms on the fine model to
+// maxilla advancement slider (0.5 mm steps), sees a new frame, a solve time and the converged state, confirms on the fine model to
 // 100 %, and saves a screenshot as a test artefact.
 // Environment: ORTHOSIM_CLI (the executable), ORTHOSIM_TEST_DATA (server data folder),
 // ARTIFACT_DIR (where the screenshot goes); see harness.mjs.
@@ -26,10 +26,14 @@ test("planning page: slider preview, fine confirm, screenshot", { timeout: 30000
     await page.waitForFunction(() => /Solved in/.test(document.querySelector("#preview-figures").textContent), null, { timeout: 60000 });
     const before = await page.locator("#frame").getAttribute("src");
 
-    // Drag-like input: 40 key presses of 0.1 mm move the maxilla 4 mm forward.
+    // Drag-like input: 8 key presses of 0.5 mm move the maxilla 4 mm forward; the number field
+    // follows, and its arrow keys step 0.5 mm too.
     await slider.focus();
-    for (let i = 0; i < 40; i++) await page.keyboard.press("ArrowRight");
+    for (let i = 0; i < 8; i++) await page.keyboard.press("ArrowRight");
     assert.equal(Number(await slider.inputValue()), 4);
+    const number = page.locator('label.axis:has(input[aria-label="maxilla anterior_mm"]) input[type="number"]');
+    assert.equal(Number(await number.inputValue()), 4);
+    assert.equal(await number.getAttribute("step"), "0.5");
     await page.waitForFunction(
       (old) => document.querySelector("#frame").src !== old &&
         /upper lip/.test(document.querySelector("#preview-figures").textContent), before, { timeout: 60000 });
@@ -41,6 +45,10 @@ test("planning page: slider preview, fine confirm, screenshot", { timeout: 30000
     }, null, { timeout: 60000 });
     const solve = await page.locator("#solve-time").textContent();
     assert.match(solve, /Solved in \d+\.\d+ s/);
+    // The face shown is the converged one once the previews caught up; the frame rate is shown.
+    await page.waitForFunction(() => document.querySelector("#solve-state").dataset.state === "converged", null, { timeout: 60000 });
+    assert.match(await page.locator("#solve-state").textContent(), /converged \(last solve \d+\.\d+ s/);
+    assert.match(await page.locator("#frame-info").textContent(), /\d+ fps/);
 
     // View buttons and mouse orbit redraw the face.
     await page.click('#views button[data-view="profile"]');
