@@ -82,6 +82,7 @@ LinearResponse::LinearResponse(Model& model, const SimState& state, std::vector<
     if (!model.factor().factorize(model.system().matrix()))
       throw std::runtime_error("the reduced Hessian at the converged state cannot be factorised");
   }
+  model.setFactorState(base_);
   if (control.cancelled()) throw ResponseCancelled();
   const Eigen::Index n = static_cast<Eigen::Index>(parameters_.size());
   std::vector<Eigen::Matrix3Xd> dxc(parameters_.size());

@@ -115,6 +115,16 @@ void Model::assemble(const SimState& s, const Eigen::Matrix3Xd& g, bool projectT
   for (const ActiveContact& c : activeContacts(s)) system_->addNodeBlock(c.node, ContactEnergy::hessianBlock(c));
 }
 
+bool Model::factorIsAt(const SimState& s) const {
+  if (!factor_.valid() || !factorState_ || factorState_->fixedScale != s.fixedScale || factorState_->x != s.x ||
+      factorState_->fragments.size() != s.fragments.size())
+    return false;
+  for (size_t f = 0; f < s.fragments.size(); ++f)
+    if (factorState_->fragments[f].R != s.fragments[f].R || factorState_->fragments[f].b != s.fragments[f].b)
+      return false;
+  return true;
+}
+
 bool Model::isRestState(const SimState& s) const {
   if (s.fixedScale != 0.0 || s.x != scene_.mesh.rest) return false;
   for (const RigidPose& p : s.fragments)

@@ -3,6 +3,7 @@
 // and its symbolic factorisation. Solves (previews, plan changes) reuse it.
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "contact/ContactEnergy.hpp"
@@ -38,6 +39,10 @@ class Model {
   ReducedSystem& system() { return *system_; }
   const ReducedSystem& system() const { return *system_; }
   CholmodFactor& factor() { return factor_; }
+  // Whoever factorises factor() at a state says so, so that a later solve starting from that state
+  // can use it instead of factorising the same matrix again (a preview after the drag response).
+  void setFactorState(const SimState& s) { factorState_ = s; }
+  bool factorIsAt(const SimState& s) const;
 
   // Length scale (mean edge length, mm) and the tolerances resolved from the scene's settings.
   double lengthScale() const { return lengthScale_; }
@@ -76,6 +81,7 @@ class Model {
   std::unique_ptr<ContactEnergy> contact_;  // null without contact pairs
   mutable double contactSeconds_ = 0;
   CholmodFactor factor_;
+  std::optional<SimState> factorState_;  // where factor_ was made, when valid
   CholmodFactor restFactor_;
   double lengthScale_ = 1.0;
   double buildSeconds_ = 0.0;

@@ -49,8 +49,8 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
   const double nominal = settings.substeps > 0 ? 1.0 / settings.substeps : 1.0;
   const double minStep = nominal / double(1 << std::min(settings.maxRefinements, 30));
   double s = 0.0, ds = nominal;
-  int spent = 0;                // iterations of every substep so far, failed ones included
-  model.factor().invalidate();  // the factor may belong to another state
+  int spent = 0;  // iterations of every substep so far, failed ones included
+  if (!model.factorIsAt(start)) model.factor().invalidate();  // it belongs to another state
   while (s < 1.0) {
     if (spent >= settings.maxTotalIterations) {
       r.error = "the solve did not converge within " + std::to_string(settings.maxTotalIterations) +

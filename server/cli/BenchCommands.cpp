@@ -68,6 +68,8 @@ void BenchCommands::addLatency() {
                                     "Time coarse previews through the planning server (WebSocket round "
                                     "trips on the phantom)");
   latency_->add_option("--changes", latencyOptions_.changes, "Pose changes")->check(CLI::Range(1, 10000));
+  latency_->add_option("--step-mm", latencyOptions_.stepMm, "Maxilla advancement per pose change, mm")
+      ->check(CLI::Range(0.01, 2.0));
   latency_->add_option("--data", latencyOptions_.dataDir, "Data folder (phantom and mesh cache, reused)");
   latency_->add_option("--variant", latencyOptions_.phantomVariant, "Phantom variant")->check(CLI::Range(0, 100));
   addJson(latency_, latencyOptions_.jsonPath);

@@ -37,6 +37,7 @@ int runCaseBench(const CaseBenchOptions& options);
 
 struct LatencyBenchOptions {
   int changes = 50;
+  double stepMm = 0.2;  // of each pose change
   int phantomVariant = 0;
   std::string dataDir = "orthosim-bench-data";  // built phantom and mesh cache (reused between runs)
   std::string webDir;

@@ -91,10 +91,10 @@ int runLatencyBench(const LatencyBenchOptions& options) {
     std::cout << "opened " << opened["case"].get<std::string>() << " (coarse: " << opened["coarse"]["tetrahedra"]
               << " tets, " << opened["coarse"]["boundary_triangles"] << " boundary triangles) in "
               << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s\n";
-    // A drag: the maxilla forward in 0.2 mm steps up to 5 mm and back, each pose waited for.
+    // A drag: the maxilla forward in 0.2 mm steps (--step-mm) 25 times and back, each pose waited for.
     for (int i = 0; i < options.changes; ++i) {
       const int k = i % 50;
-      const double mm = 0.2 * (k < 25 ? k + 1 : 50 - k);
+      const double mm = options.stepMm * (k < 25 ? k + 1 : 50 - k);
       const auto s = std::chrono::steady_clock::now();
       client.send({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", mm}}}}}});
       const json preview = client.waitFor("preview");
@@ -103,8 +103,8 @@ int runLatencyBench(const LatencyBenchOptions& options) {
       client.waitFor("frame");  // the face as the page shows it
       toFrame.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - s).count());
     }
-    std::cout << std::fixed << std::setprecision(3) << "preview latency over " << options.changes
-              << " pose changes (send -> preview received): median " << median(roundTrip) << " s, p95 "
+    std::cout << std::fixed << std::setprecision(3) << "preview latency over " << options.changes << " pose changes of "
+              << options.stepMm << " mm (send -> preview received): median " << median(roundTrip) << " s, p95 "
               << quantile(roundTrip, 0.95) << " s, max " << quantile(roundTrip, 1.0) << " s\n"
               << "until its frame (send -> JPEG received): median " << median(toFrame) << " s, p95 "
               << quantile(toFrame, 0.95) << " s\n"

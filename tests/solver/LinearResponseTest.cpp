@@ -152,6 +152,36 @@ TEST(LinearResponse, ContactCarriesTheResponseOfAPlateWithoutTissue) {
   }
 }
 
+// The factorisation the response leaves at its base is reused by the next solve from that base
+// (the preview after a drag): a small move then converges without a new factorisation (chord
+// steps with it), to the answer of a solve that factorises.
+TEST(LinearResponse, ASolveFromItsBaseReusesItsFactorisation) {
+  Model model(tight(makeBlockScene(Eigen::Vector3i(6, 4, 2))));
+  const FragmentMotion m = blockReferenceMotion();
+  const SolveResult start = solveScene(model);
+  ASSERT_TRUE(start.converged) << start.error;
+  EXPECT_FALSE(model.factorIsAt(start.state));  // Newton's last factorisation was a step before
+  const int B = *model.scene().fragmentIndex("B");
+  const LinearResponse response(model, start.state,
+                                poseParameters(B, Eigen::Matrix3d::Identity(), m.center + m.translation));
+  EXPECT_TRUE(model.factorIsAt(start.state));
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(6);
+  d[1] = 0.2;  // mm
+  PlanTargets t;
+  t.boundary = {movedPoses(start.state.fragments, response.parameters(), d), start.state.fixedScale};
+  t.centers.assign(t.boundary.fragments.size(), m.center);
+  const SolveResult reused = solvePlan(model, start.state, t, model.scene().solver);
+  ASSERT_TRUE(reused.converged) << reused.error;
+  EXPECT_EQ(reused.timings.factorizations, 0);
+  EXPECT_GE(reused.chordIterations, 1);
+  model.factor().invalidate();
+  EXPECT_FALSE(model.factorIsAt(start.state));
+  const SolveResult fresh = solvePlan(model, start.state, t, model.scene().solver);
+  ASSERT_TRUE(fresh.converged) << fresh.error;
+  EXPECT_GE(fresh.timings.factorizations, 1);
+  EXPECT_LT((reused.state.x - fresh.state.x).cwiseAbs().maxCoeff(), 1e-8);
+}
+
 TEST(LinearResponse, DeltaToReachesGivenPosesExactly) {
   Model model(makeBlockScene(Eigen::Vector3i(4, 2, 2)));
   const SolveResult start = solveScene(model);
