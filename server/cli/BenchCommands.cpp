@@ -31,6 +31,7 @@ BenchCommands::BenchCommands(CLI::App& app) {
   addPhantom();
   addCase();
   addLatency();
+  addSessions();
   addRender();
   addCohort();
 }
@@ -60,6 +61,17 @@ void BenchCommands::addCase() {
   addPlan(case_, caseOptions_.planPath);
   addRepeats(case_, caseOptions_.repeats, "Runs (medians reported)");
   addJson(case_, caseOptions_.jsonPath);
+}
+
+void BenchCommands::addSessions() {
+  sessionsOptions_.webDir = ORTHOSIM_WEB_DIR;
+  sessions_ = bench_->add_subcommand(
+      "sessions", "Resident memory with 1, 4 and 16 planning sessions open on the phantom, and the open time");
+  sessions_->add_option("--counts", sessionsOptions_.counts, "Session counts to read the memory at (increasing)")
+      ->check(CLI::Range(1, 64));
+  sessions_->add_option("--data", sessionsOptions_.dataDir, "Data folder (phantom and mesh cache, reused)");
+  sessions_->add_option("--variant", sessionsOptions_.phantomVariant, "Phantom variant")->check(CLI::Range(0, 100));
+  addJson(sessions_, sessionsOptions_.jsonPath);
 }
 
 void BenchCommands::addLatency() {
@@ -125,6 +137,11 @@ int BenchCommands::run() const {
   if (phantom_->parsed()) return runCaseBench(phantomOptions_);
   if (case_->parsed()) return runCaseBench(caseOptions_);
   if (latency_->parsed()) return runLatencyBench(latencyOptions_);
+  if (sessions_->parsed()) {
+    if (!std::is_sorted(sessionsOptions_.counts.begin(), sessionsOptions_.counts.end()))
+      throw CLI::ValidationError("--counts", "session counts must increase");
+    return runSessionsBench(sessionsOptions_);
+  }
   if (render_->parsed()) return runRenderBench(renderOptions_);
   if (cohort_->parsed()) return runCohortBench(cohortOptions_);
   return 1;

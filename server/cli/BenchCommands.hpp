@@ -24,15 +24,17 @@ class BenchCommands {
   void addPhantom();
   void addCase();
   void addLatency();
+  void addSessions();
   void addRender();
   void addCohort();
 
   CLI::App* bench_ = nullptr;
   CLI::App *blocks_ = nullptr, *phantom_ = nullptr, *case_ = nullptr, *latency_ = nullptr, *render_ = nullptr,
-           *cohort_ = nullptr;
+           *cohort_ = nullptr, *sessions_ = nullptr;
   BenchOptions blocksOptions_;
   CaseBenchOptions phantomOptions_, caseOptions_;
   LatencyBenchOptions latencyOptions_;
+  SessionsBenchOptions sessionsOptions_;
   RenderBenchOptions renderOptions_;
   CohortBenchOptions cohortOptions_;
 };

@@ -46,6 +46,16 @@ struct LatencyBenchOptions {
 // Round-trip latency of coarse previews through the planning server (bench latency).
 int runLatencyBench(const LatencyBenchOptions& options);
 
+struct SessionsBenchOptions {
+  std::vector<int> counts = {1, 4, 16};  // sessions open when the memory is read (increasing)
+  int phantomVariant = 0;
+  std::string dataDir = "orthosim-bench-data";
+  std::string webDir;
+  std::string jsonPath;
+};
+// Resident memory with 1, 4, 16 sessions on one case, and the open time (bench sessions).
+int runSessionsBench(const SessionsBenchOptions& options);
+
 struct RenderCommandOptions {
   std::string planPath;          // plan file replacing the case's plan; empty: the case's plan
   std::string view = "profile";  // a clinical view (render/ClinicalView.hpp)

@@ -3,10 +3,6 @@
 // pose changes from sending set_poses to receiving the preview and then its frame, beside the
 // solve's own time; then the drag view: linear frames per second and how far they were off.
 #include <algorithm>
-#include <boost/asio/connect.hpp>
-#include <boost/asio/ip/tcp.hpp>
-#include <boost/beast/core.hpp>
-#include <boost/beast/websocket.hpp>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -15,13 +11,12 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "cli/BenchClient.hpp"
 #include "cli/Commands.hpp"
 #include "eval/Statistics.hpp"
 #include "net/Server.hpp"
 
 namespace orthosim::cli {
-namespace beast = boost::beast;
-namespace websocket = beast::websocket;
 using nlohmann::json;
 
 namespace {
@@ -30,44 +25,6 @@ double quantile(std::vector<double> v, double q) {
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5))];
 }
-
-class BenchClient {
- public:
-  explicit BenchClient(unsigned short port) : ws_(io_) {
-    beast::get_lowest_layer(ws_).connect({boost::asio::ip::make_address("127.0.0.1"), port});
-    ws_.handshake("127.0.0.1", "/ws");
-    ws_.text(true);
-  }
-  void send(const json& m) { ws_.write(boost::asio::buffer(m.dump())); }
-  // The next message of `type`; "frame" stands for the next binary frame.
-  json waitFor(const std::string& type) {
-    return waitFor([&](const json& m) { return m["type"] == type; }, type == "frame");
-  }
-  // The "frame" message of the frame drawn for the set_poses with this id.
-  json waitForFrameOf(int id) {
-    return waitFor([&](const json& m) { return m["type"] == "frame" && m["shows"].value("pose_id", json()) == id; },
-                   false);
-  }
-
- private:
-  template <class Match>
-  json waitFor(const Match& match, bool binaryFrame) {
-    for (;;) {
-      beast::flat_buffer b;
-      ws_.read(b);
-      if (ws_.got_binary()) {
-        if (binaryFrame) return {{"type", "frame"}, {"bytes", b.size()}};
-        continue;
-      }
-      json m = json::parse(beast::buffers_to_string(b.data()));
-      if (match(m)) return m;
-      if (m["type"] == "error" || m["type"] == "preview_failed") throw std::runtime_error(m.dump());
-    }
-  }
-
-  boost::asio::io_context io_;
-  websocket::stream<beast::tcp_stream> ws_;
-};
 
 }  // namespace
 

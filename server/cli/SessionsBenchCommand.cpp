@@ -1,0 +1,93 @@
+// `orthosim bench sessions`: memory and open time of planning sessions on one case. Starts the
+// planning server in this process, then opens sessions on the phantom one after another, each as
+// the page does (open, a preview, its drag response, a frame), and reads the process's resident
+// memory with 1, 4 and 16 sessions open.
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli/BenchClient.hpp"
+#include "cli/Commands.hpp"
+#include "eval/Statistics.hpp"
+#include "net/Server.hpp"
+
+namespace orthosim::cli {
+using nlohmann::json;
+
+namespace {
+
+double residentMiB() {
+  std::ifstream in("/proc/self/status");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("VmRSS:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  return -1;
+}
+
+}  // namespace
+
+int runSessionsBench(const SessionsBenchOptions& options) {
+  net::ServerOptions so;
+  so.host = "127.0.0.1";
+  so.port = 0;
+  so.webDir = options.webDir;
+  so.planning.dataDir = std::filesystem::absolute(options.dataDir);
+  so.planning.maxSessions = std::max(so.planning.maxSessions, options.counts.back());
+  std::filesystem::create_directories(so.planning.dataDir);
+  so.planning.cases = server::builtInCases();
+  net::Server server(so);
+  std::thread serving([&] { server.runUntilSignal(); });
+  int status = 0;
+  try {
+    const std::string caseId = "phantom-" + std::to_string(options.phantomVariant);
+    std::vector<std::unique_ptr<BenchClient>> sessions;
+    std::vector<double> openSeconds;
+    json rows = json::array();
+    const double before = residentMiB();
+    std::cout << std::fixed << std::setprecision(0) << "resident before any session: " << before << " MiB\n";
+    double last = before;
+    size_t lastCount = 0;
+    for (int count : options.counts) {
+      while (static_cast<int>(sessions.size()) < count) {
+        auto& c = *sessions.emplace_back(std::make_unique<BenchClient>(server.port()));
+        c.send({{"type", "open"}, {"case", caseId}});
+        openSeconds.push_back(c.waitFor("opened")["seconds"].get<double>());
+        c.waitFor("frame");  // its renderer exists
+        c.send({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 2.0}}}}}});
+        c.waitFor("preview");
+        c.waitFor("drag_ready");  // its linear response exists
+      }
+      const double now = residentMiB();
+      const double perSession = (now - last) / static_cast<double>(sessions.size() - lastCount);
+      std::cout << sessions.size() << " session(s): resident " << now << " MiB, " << perSession
+                << " MiB per session added\n";
+      rows.push_back({{"sessions", sessions.size()}, {"resident_mib", now}, {"per_added_session_mib", perSession}});
+      last = now;
+      lastCount = sessions.size();
+    }
+    std::cout << std::setprecision(3) << "open of the cached case (server's \"opened\" seconds): median "
+              << median(openSeconds) << " s over " << openSeconds.size() << " sessions (the first "
+              << openSeconds.front() << " s)\n";
+    if (!options.jsonPath.empty())
+      std::ofstream(options.jsonPath) << json{{"before_mib", before},
+                                              {"rows", rows},
+                                              {"open_s", {{"median", median(openSeconds)}, {"all", openSeconds}}}}
+                                             .dump(2)
+                                      << "\n";
+  } catch (const std::exception& e) {
+    std::cerr << "orthosim bench sessions: " << e.what() << "\n";
+    status = 1;
+  }
+  server.stop();
+  serving.join();
+  return status;
+}
+
+}  // namespace orthosim::cli
