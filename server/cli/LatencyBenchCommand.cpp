@@ -12,9 +12,9 @@
 #include <thread>
 
 #include "cli/BenchClient.hpp"
+#include "cli/BenchServer.hpp"
 #include "cli/Commands.hpp"
 #include "eval/Statistics.hpp"
-#include "net/Server.hpp"
 
 namespace orthosim::cli {
 using nlohmann::json;
@@ -29,15 +29,7 @@ double quantile(std::vector<double> v, double q) {
 }  // namespace
 
 int runLatencyBench(const LatencyBenchOptions& options) {
-  net::ServerOptions so;
-  so.host = "127.0.0.1";
-  so.port = 0;
-  so.webDir = options.webDir;
-  so.planning.dataDir = std::filesystem::absolute(options.dataDir);
-  std::filesystem::create_directories(so.planning.dataDir);
-  so.planning.cases = server::builtInCases();
-  net::Server server(so);
-  std::thread serving([&] { server.runUntilSignal(); });
+  const BenchServer server(options.webDir, options.dataDir);
   std::vector<double> roundTrip, solve, toFrame;
   int status = 0;
   try {
@@ -112,8 +104,6 @@ int runLatencyBench(const LatencyBenchOptions& options) {
     std::cerr << "orthosim bench latency: " << e.what() << "\n";
     status = 1;
   }
-  server.stop();
-  serving.join();
   return status;
 }
 

@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "cli/BenchClient.hpp"
+#include "cli/BenchServer.hpp"
 #include "cli/Commands.hpp"
 #include "eval/Statistics.hpp"
-#include "net/Server.hpp"
 
 namespace orthosim::cli {
 using nlohmann::json;
@@ -34,16 +34,7 @@ double residentMiB() {
 }  // namespace
 
 int runSessionsBench(const SessionsBenchOptions& options) {
-  net::ServerOptions so;
-  so.host = "127.0.0.1";
-  so.port = 0;
-  so.webDir = options.webDir;
-  so.planning.dataDir = std::filesystem::absolute(options.dataDir);
-  so.planning.maxSessions = std::max(so.planning.maxSessions, options.counts.back());
-  std::filesystem::create_directories(so.planning.dataDir);
-  so.planning.cases = server::builtInCases();
-  net::Server server(so);
-  std::thread serving([&] { server.runUntilSignal(); });
+  const BenchServer server(options.webDir, options.dataDir, options.counts.back());
   int status = 0;
   try {
     const std::string caseId = "phantom-" + std::to_string(options.phantomVariant);
@@ -85,8 +76,6 @@ int runSessionsBench(const SessionsBenchOptions& options) {
     std::cerr << "orthosim bench sessions: " << e.what() << "\n";
     status = 1;
   }
-  server.stop();
-  serving.join();
   return status;
 }
 

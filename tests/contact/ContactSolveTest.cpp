@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "CubeOnRollers.hpp"
 #include "Square.hpp"
 #include "mesh/BoxMesh.hpp"
 #include "mesh/SurfacePrimitives.hpp"
@@ -36,24 +37,7 @@ Eigen::Vector3d contactForce(const Model& model, const SimState& s) {
 // comes down from z = 10: homogeneous uniaxial compression, whose force has a closed form.
 TEST(ContactSolve, PlateSqueezingABlockReachesTheUniaxialForce) {
   const double L = 10.0, push = 2.0;
-  Scene s;
-  s.mesh = makeBoxMesh({Eigen::Vector3d(L, L, L), Eigen::Vector3i(4, 4, 4)});
-  FixedSpec rollers, pin, noSpin;
-  rollers.components = {false, false, true};
-  noSpin.components = {false, true, true};
-  std::vector<int> top;
-  for (int i = 0; i < s.mesh.numNodes(); ++i) {
-    const Eigen::Vector3d X = s.mesh.rest.col(i);
-    if (X.z() == L) top.push_back(i);
-    if (X.z() != 0) continue;
-    if (X.x() == 0 && X.y() == 0)
-      pin.nodes.push_back(i);
-    else if (X.x() == L && X.y() == 0)
-      noSpin.nodes.push_back(i);
-    else
-      rollers.nodes.push_back(i);
-  }
-  s.fixed = {rollers, pin, noSpin};
+  auto [s, top] = test::cubeOnRollers(L, 4);
   s.fragments = {{"plate", {}, false}};
   s.contacts = {{"plate on top", top, square(L, 3 * L, false), "plate", 0}};
   s.plan["plate"].translation = {0, 0, -push};

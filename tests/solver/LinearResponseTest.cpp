@@ -7,6 +7,7 @@
 #include <atomic>
 #include <stdexcept>
 
+#include "../contact/CubeOnRollers.hpp"
 #include "../contact/Square.hpp"
 #include "math/Angles.hpp"
 #include "mesh/BoxMesh.hpp"
@@ -103,24 +104,7 @@ TEST(LinearResponse, FirstOrderErrorShrinksFourfoldWhenThePoseChangeHalves) {
 // plate, so the response is all contact: the plate's surface moving under nodes held still.
 TEST(LinearResponse, ContactCarriesTheResponseOfAPlateWithoutTissue) {
   const double L = 10.0;
-  Scene s;
-  s.mesh = makeBoxMesh({Eigen::Vector3d(L, L, L), Eigen::Vector3i(4, 4, 4)});
-  FixedSpec rollers, pin, noSpin;
-  rollers.components = {false, false, true};
-  noSpin.components = {false, true, true};
-  std::vector<int> top;
-  for (int i = 0; i < s.mesh.numNodes(); ++i) {
-    const Eigen::Vector3d X = s.mesh.rest.col(i);
-    if (X.z() == L) top.push_back(i);
-    if (X.z() != 0) continue;
-    if (X.x() == 0 && X.y() == 0)
-      pin.nodes.push_back(i);
-    else if (X.x() == L && X.y() == 0)
-      noSpin.nodes.push_back(i);
-    else
-      rollers.nodes.push_back(i);
-  }
-  s.fixed = {rollers, pin, noSpin};
+  auto [s, top] = test::cubeOnRollers(L, 4);
   s.fragments = {{"plate", {}, false}};
   // Shifted so that the square's diagonal passes under no node: below an edge of a flat surface
   // the closest feature is a tie, and the edge's curvature there is not the flat surface's (zero).
