@@ -55,6 +55,7 @@ class ContactEnergy {
   static Eigen::Matrix3d hessianBlock(const ActiveContact& c, bool projectToPSD = true);
 
   long long queries() const { return queries_; }  // distance queries made
+  const std::vector<ContactPair>& pairs() const { return pairs_; }
 
  private:
   // Per pair and node: where it was last queried (rest frame of the surface) and how far outside

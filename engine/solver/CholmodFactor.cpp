@@ -1,6 +1,7 @@
 #include "solver/CholmodFactor.hpp"
 
 #include <Eigen/CholmodSupport>
+#include <mutex>
 #include <stdexcept>
 
 namespace orthosim {
@@ -29,6 +30,9 @@ class SupernodalLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<dou
 
 struct CholmodFactor::Impl {
   SupernodalLLT llt;
+  // CHOLMOD's solve works in the factor's own workspace: a factor shared between sessions (the rest
+  // factorisation of a case) is solved with by one thread at a time.
+  std::mutex solving;
 };
 
 CholmodFactor::CholmodFactor() : impl_(std::make_unique<Impl>()) {
@@ -68,11 +72,13 @@ bool CholmodFactor::factorize(const Eigen::SparseMatrix<double>& lower) {
 
 Eigen::VectorXd CholmodFactor::solve(const Eigen::VectorXd& rhs) const {
   if (!factored_) throw std::logic_error("CholmodFactor::solve without a valid factorisation");
+  const std::lock_guard<std::mutex> lock(impl_->solving);
   return impl_->llt.solve(rhs);
 }
 
 Eigen::MatrixXd CholmodFactor::solveMany(const Eigen::MatrixXd& rhs) const {
   if (!factored_) throw std::logic_error("CholmodFactor::solve without a valid factorisation");
+  const std::lock_guard<std::mutex> lock(impl_->solving);
   return impl_->llt.solve(rhs);
 }
 

@@ -6,23 +6,25 @@
 
 namespace orthosim {
 
-Model::Model(Scene scene) : scene_(std::move(scene)) {
+Model::Model(Scene sceneIn) : scene_(std::make_shared<const Scene>(std::move(sceneIn))) {
+  const Scene& scene = *scene_;
   const auto t0 = std::chrono::steady_clock::now();
-  validateMesh(scene_.mesh, "tissue mesh");
-  const NeoHookean material = NeoHookean::fromYoungPoisson(scene_.youngsModulus, scene_.poissonRatio);
-  for (const auto& [name, motion] : scene_.plan) {
-    const auto f = scene_.fragmentIndex(name);
+  validateMesh(scene_->mesh, "tissue mesh");
+  const NeoHookean material = NeoHookean::fromYoungPoisson(scene_->youngsModulus, scene_->poissonRatio);
+  for (const auto& [name, motion] : scene_->plan) {
+    const auto f = scene_->fragmentIndex(name);
     if (!f) throw std::invalid_argument("plan: unknown fragment '" + name + "'");
-    if (scene_.fragments[*f].free)
+    if (scene_->fragments[*f].free)
       throw std::invalid_argument("plan: fragment '" + name + "' is free; only prescribed fragments can be planned");
     if (!motion.translation.allFinite() || !motion.rotation.allFinite() || !motion.center.allFinite())
       throw std::invalid_argument("plan: fragment '" + name + "' has a non-finite value");
   }
-  energy_ = std::make_unique<SoftTissueEnergy>(scene_.mesh, material);
-  coupling_ = std::make_unique<Coupling>(scene_);
+  auto energy = std::make_shared<SoftTissueEnergy>(scene.mesh, material);
+  coupling_ = std::make_shared<const Coupling>(scene);
   if (coupling_->numReducedDofs() == 0) throw std::invalid_argument("the scene has no free degrees of freedom");
-  energy_->restrictTo(elementsWithFreedom());
-  lengthScale_ = scene_.mesh.meanEdgeLength();
+  energy_ = energy;  // elementsWithFreedom reads the mesh through it
+  energy->restrictTo(elementsWithFreedom());
+  lengthScale_ = scene_->mesh.meanEdgeLength();
   buildContact();
   system_ = std::make_unique<ReducedSystem>(*energy_, *coupling_);
   factor_.analyze(system_->matrix());
@@ -31,18 +33,32 @@ Model::Model(Scene scene) : scene_(std::move(scene)) {
   // (Elastic only: contact must not hide tissue that nothing holds.)
   const SimState rest = restState();
   system_->assemble(rest, energy_->gradient(rest.x), false);
-  restFactor_.analyzeLike(factor_);
-  if (!restFactor_.factorize(system_->matrix()))
+  auto restFactor = std::make_shared<CholmodFactor>();
+  restFactor->analyzeLike(factor_);
+  restFactor_ = restFactor;
+  if (!restFactor->factorize(system_->matrix()))
     throw std::invalid_argument(
         "part of the tissue is held by nothing (the stiffness matrix at rest is singular): "
         "check that every connected piece of tissue has fixed or bonded nodes");
   buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+Model::Model(const Model& prototype, ShareImmutable)
+    : scene_(prototype.scene_),
+      energy_(prototype.energy_),
+      coupling_(prototype.coupling_),
+      system_(std::make_unique<ReducedSystem>(*prototype.system_)),
+      contact_(prototype.contact_ ? std::make_unique<ContactEnergy>(prototype.contact_->pairs()) : nullptr),
+      restFactor_(prototype.restFactor_),
+      lengthScale_(prototype.lengthScale_),
+      buildSeconds_(prototype.buildSeconds_) {
+  factor_.analyzeLike(prototype.factor_);
+}
+
 // Elements with at least one node that has a free DoF or follows a free fragment.
 std::vector<int> Model::elementsWithFreedom() const {
   std::vector<int> out;
-  const TetMesh& mesh = scene_.mesh;
+  const TetMesh& mesh = scene_->mesh;
   for (int e = 0; e < mesh.numTets(); ++e)
     for (int a = 0; a < 4; ++a) {
       const int n = mesh.tets(a, e);
@@ -56,16 +72,16 @@ std::vector<int> Model::elementsWithFreedom() const {
 }
 
 void Model::buildContact() {
-  if (scene_.contacts.empty()) return;
-  const double defaultStiffness = kDefaultContactFactor * scene_.youngsModulus * scene_.mesh.meanEdgeLength();
+  if (scene_->contacts.empty()) return;
+  const double defaultStiffness = kDefaultContactFactor * scene_->youngsModulus * scene_->mesh.meanEdgeLength();
   std::vector<ContactPair> pairs;
-  for (const ContactSpec& c : scene_.contacts) {
+  for (const ContactSpec& c : scene_->contacts) {
     const std::string where = "contact '" + c.name + "'";
     ContactPair pair;
     if (!c.fragment.empty()) {
-      const auto f = scene_.fragmentIndex(c.fragment);
+      const auto f = scene_->fragmentIndex(c.fragment);
       if (!f) throw std::invalid_argument(where + ": unknown fragment '" + c.fragment + "'");
-      if (scene_.fragments[*f].free)
+      if (scene_->fragments[*f].free)
         throw std::invalid_argument(where + ": fragment '" + c.fragment +
                                     "' is free; contact needs a planned or fixed surface");
       pair.fragment = *f;
@@ -73,14 +89,14 @@ void Model::buildContact() {
     if (c.stiffness < 0 || !std::isfinite(c.stiffness))
       throw std::invalid_argument(where + ": stiffness must be positive (N/mm), or 0 for the default");
     pair.stiffness = c.stiffness > 0 ? c.stiffness : defaultStiffness;
-    pair.onset = kContactOnsetFactor * scene_.mesh.meanEdgeLength();
+    pair.onset = kContactOnsetFactor * scene_->mesh.meanEdgeLength();
     try {
       pair.surface = std::make_shared<RigidSurface>(c.surface);
     } catch (const std::exception& e) {
       throw std::invalid_argument(where + ": " + e.what());
     }
     for (int n : c.nodes) {
-      if (n < 0 || n >= scene_.mesh.numNodes())
+      if (n < 0 || n >= scene_->mesh.numNodes())
         throw std::invalid_argument(where + ": node " + std::to_string(n) + " is outside the mesh");
       const bool free = coupling_->dof(n, 0) >= 0 || coupling_->dof(n, 1) >= 0 || coupling_->dof(n, 2) >= 0;
       if (free && !coupling_->dependsOnFreeFragment(n)) pair.nodes.push_back(n);
@@ -126,7 +142,7 @@ bool Model::factorIsAt(const SimState& s) const {
 }
 
 bool Model::isRestState(const SimState& s) const {
-  if (s.fixedScale != 0.0 || s.x != scene_.mesh.rest) return false;
+  if (s.fixedScale != 0.0 || s.x != scene_->mesh.rest) return false;
   for (const RigidPose& p : s.fragments)
     if (p.R != Eigen::Matrix3d::Identity() || p.b != Eigen::Vector3d::Zero()) return false;
   return true;
@@ -135,12 +151,12 @@ bool Model::isRestState(const SimState& s) const {
 double Model::forceTolerance() const {
   // An out-of-balance nodal force of 1e-4 E h^2 displaces a node by about 1e-4 h (0.2 um for
   // 2 mm elements), consistent with the step tolerance.
-  if (scene_.solver.forceTolerance > 0) return scene_.solver.forceTolerance;
-  return 1e-4 * scene_.youngsModulus * lengthScale_ * lengthScale_;
+  if (scene_->solver.forceTolerance > 0) return scene_->solver.forceTolerance;
+  return 1e-4 * scene_->youngsModulus * lengthScale_ * lengthScale_;
 }
 
 double Model::stepTolerance() const {
-  if (scene_.solver.stepTolerance > 0) return scene_.solver.stepTolerance;
+  if (scene_->solver.stepTolerance > 0) return scene_->solver.stepTolerance;
   // Newton converges quadratically: after a step below 1e-4 h the remaining error is far smaller.
   return 1e-4 * lengthScale_;
 }
@@ -149,10 +165,10 @@ PlanTargets Model::targetsFromPlan(const std::map<std::string, FragmentMotion>& 
   PlanTargets t;
   t.boundary.fragments = start.fragments;
   t.boundary.fixedScale = 1.0;
-  t.centers.resize(scene_.fragments.size());
-  for (size_t f = 0; f < scene_.fragments.size(); ++f) {
+  t.centers.resize(scene_->fragments.size());
+  for (size_t f = 0; f < scene_->fragments.size(); ++f) {
     t.centers[f] = coupling_->fragmentOrigin(static_cast<int>(f));
-    const auto it = plan.find(scene_.fragments[f].name);
+    const auto it = plan.find(scene_->fragments[f].name);
     if (it == plan.end()) continue;
     t.boundary.fragments[f] = it->second.pose();
     t.centers[f] = it->second.center;

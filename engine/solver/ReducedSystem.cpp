@@ -30,6 +30,7 @@ ReducedSystem::ReducedSystem(const SoftTissueEnergy& energy, const Coupling& cou
     : energy_(energy), coupling_(coupling) {
   const TetMesh& mesh = energy.mesh();
   const int nz = coupling.numReducedDofs();
+  auto p = std::make_shared<Pattern>();
   ColumnSets cols(nz);
 
   // Classify elements and record the pattern.
@@ -42,7 +43,7 @@ ReducedSystem::ReducedSystem(const SoftTissueEnergy& energy, const Coupling& cou
       for (int a = 0; a < 4; ++a)
         for (int c = 0; c < 3; ++c) free = free || coupling.dof(mesh.tets(a, e), c) >= 0;
       if (!free) continue;  // moves with bone only: contributes nothing to the reduced system
-      simpleElements_.push_back(e);
+      p->simpleElements.push_back(e);
       for (int r = 0; r < 12; ++r)
         for (int s = 0; s < 12; ++s) {
           const int dr = coupling.dof(mesh.tets(r / 3, e), r % 3), ds = coupling.dof(mesh.tets(s / 3, e), s % 3);
@@ -63,7 +64,7 @@ ReducedSystem::ReducedSystem(const SoftTissueEnergy& energy, const Coupling& cou
     g.dofs.erase(std::unique(g.dofs.begin(), g.dofs.end()), g.dofs.end());
     for (int r : g.dofs)
       for (int s : g.dofs) addPair(cols, r, s);
-    general_.push_back(std::move(g));
+    p->general.push_back(std::move(g));
   }
   for (int f = 0; f < coupling.numFragments(); ++f)
     if (coupling.isFree(f))
@@ -86,16 +87,16 @@ ReducedSystem::ReducedSystem(const SoftTissueEnergy& energy, const Coupling& cou
                                                      inner.data(), values.data());
 
   // Value indices for scattering.
-  simpleIndex_.assign(144 * simpleElements_.size(), -1);
-  for (size_t k = 0; k < simpleElements_.size(); ++k) {
-    const int e = simpleElements_[k];
+  p->simpleIndex.assign(144 * p->simpleElements.size(), -1);
+  for (size_t k = 0; k < p->simpleElements.size(); ++k) {
+    const int e = p->simpleElements[k];
     for (int r = 0; r < 12; ++r)
       for (int s = 0; s < 12; ++s) {
         const int dr = coupling.dof(mesh.tets(r / 3, e), r % 3), ds = coupling.dof(mesh.tets(s / 3, e), s % 3);
-        if (dr >= 0 && ds >= 0 && dr >= ds) simpleIndex_[144 * k + 12 * r + s] = valueIndex(H_, dr, ds);
+        if (dr >= 0 && ds >= 0 && dr >= ds) p->simpleIndex[144 * k + 12 * r + s] = valueIndex(H_, dr, ds);
       }
   }
-  for (auto& g : general_) {
+  for (auto& g : p->general) {
     const int m = static_cast<int>(g.dofs.size());
     g.index.assign(m * m, -1);
     for (int r = 0; r < m; ++r)
@@ -106,26 +107,27 @@ ReducedSystem::ReducedSystem(const SoftTissueEnergy& energy, const Coupling& cou
       for (int s = 0; s < 3; ++s)
         for (int r = 0; r < 3; ++r) {
           const int d = coupling.fragmentDof(f) + 3;
-          rotationBlockIndex_.push_back(r >= s ? valueIndex(H_, d + r, d + s) : -1);
+          p->rotationBlockIndex.push_back(r >= s ? valueIndex(H_, d + r, d + s) : -1);
         }
 
   // Greedy colouring: simple elements of one colour share no node, so they scatter in parallel.
   // Elements that find all 64 colours taken go to a last group scattered serially.
   std::vector<std::uint64_t> used(mesh.numNodes(), 0);
-  for (int slot = 0; slot < static_cast<int>(simpleElements_.size()); ++slot) {
-    const int e = simpleElements_[slot];
+  for (int slot = 0; slot < static_cast<int>(p->simpleElements.size()); ++slot) {
+    const int e = p->simpleElements[slot];
     std::uint64_t taken = 0;
     for (int a = 0; a < 4; ++a) taken |= used[mesh.tets(a, e)];
     int color = 0;
     while (color < 64 && ((taken >> color) & 1u)) ++color;
     if (color == 64) {
-      serialSlots_.push_back(slot);
+      p->serialSlots.push_back(slot);
       continue;
     }
     for (int a = 0; a < 4; ++a) used[mesh.tets(a, e)] |= (std::uint64_t{1} << color);
-    if (static_cast<int>(colors_.size()) <= color) colors_.resize(color + 1);
-    colors_[color].push_back(slot);
+    if (static_cast<int>(p->colors.size()) <= color) p->colors.resize(color + 1);
+    p->colors[color].push_back(slot);
   }
+  pattern_ = std::move(p);
 }
 
 Eigen::Matrix<double, 12, Eigen::Dynamic> ReducedSystem::localJacobian(const GeneralElement& g,
@@ -153,15 +155,15 @@ void ReducedSystem::assemble(const SimState& state, const Eigen::Matrix3Xd& g, b
   double* values = H_.valuePtr();
   std::fill(values, values + H_.nonZeros(), 0.0);
   auto scatterSimple = [&](int slot) {
-    const Matrix12d He = energy_.elementHessian(simpleElements_[slot], state.x, projectToPSD);
-    const int* index = simpleIndex_.data() + 144 * static_cast<size_t>(slot);
+    const Matrix12d He = energy_.elementHessian(pattern_->simpleElements[slot], state.x, projectToPSD);
+    const int* index = pattern_->simpleIndex.data() + 144 * static_cast<size_t>(slot);
     for (int r = 0; r < 12; ++r)
       for (int c = 0; c < 12; ++c)
         if (index[12 * r + c] >= 0) values[index[12 * r + c]] += He(r, c);
   };
   // An exception must not leave a parallel region (std::terminate): keep the first, throw it after.
   std::exception_ptr error;
-  for (const auto& color : colors_) {
+  for (const auto& color : pattern_->colors) {
     const int count = static_cast<int>(color.size());
 #pragma omp parallel for schedule(static)
     for (int k = 0; k < count; ++k) {
@@ -174,8 +176,8 @@ void ReducedSystem::assemble(const SimState& state, const Eigen::Matrix3Xd& g, b
     }
     if (error) std::rethrow_exception(error);
   }
-  for (int slot : serialSlots_) scatterSimple(slot);
-  for (const auto& ge : general_) {
+  for (int slot : pattern_->serialSlots) scatterSimple(slot);
+  for (const auto& ge : pattern_->general) {
     const auto J = localJacobian(ge, state);
     const Eigen::MatrixXd Hr = J.transpose() * energy_.elementHessian(ge.element, state.x, projectToPSD) * J;
     const int m = static_cast<int>(ge.dofs.size());
@@ -214,8 +216,8 @@ void ReducedSystem::addRotationCurvature(const SimState& state, const Eigen::Mat
     }
     for (int c = 0; c < 3; ++c)
       for (int r = 0; r < 3; ++r)
-        if (rotationBlockIndex_[9 * k + 3 * c + r] >= 0)
-          H_.valuePtr()[rotationBlockIndex_[9 * k + 3 * c + r]] += Mp(r, c);
+        if (pattern_->rotationBlockIndex[9 * k + 3 * c + r] >= 0)
+          H_.valuePtr()[pattern_->rotationBlockIndex[9 * k + 3 * c + r]] += Mp(r, c);
     ++k;
   }
 }
@@ -233,7 +235,7 @@ Eigen::VectorXd ReducedSystem::hessianTimes(const SimState& state, const Eigen::
     return moved;
   };
   Vector12d v;
-  for (int e : simpleElements_) {
+  for (int e : pattern_->simpleElements) {
     if (!localMove(e, v)) continue;
     const Vector12d f = energy_.elementHessian(e, state.x, projectToPSD) * v;
     for (int r = 0; r < 12; ++r) {
@@ -241,7 +243,7 @@ Eigen::VectorXd ReducedSystem::hessianTimes(const SimState& state, const Eigen::
       if (d >= 0) out[d] += f[r];
     }
   }
-  for (const auto& ge : general_) {
+  for (const auto& ge : pattern_->general) {
     if (!localMove(ge.element, v)) continue;
     const Eigen::VectorXd f =
         localJacobian(ge, state).transpose() * (energy_.elementHessian(ge.element, state.x, projectToPSD) * v);

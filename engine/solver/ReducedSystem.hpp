@@ -5,6 +5,7 @@
 // touching a free fragment go through their 12 x m local Jacobian.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
 #include "physics/SoftTissueEnergy.hpp"
@@ -15,6 +16,10 @@ namespace orthosim {
 class ReducedSystem {
  public:
   ReducedSystem(const SoftTissueEnergy& energy, const Coupling& coupling);
+  // A copy on the same energy and coupling shares the scatter pattern (read-only, one per model's
+  // prototype) and has its own matrix values: what each planning session of a case holds.
+  ReducedSystem(const ReducedSystem& other) = default;
+  ReducedSystem& operator=(const ReducedSystem&) = delete;
 
   // Assembles the reduced Hessian at `state`; `g` is the full gradient there (for the curvature
   // of free-fragment rotations).
@@ -36,15 +41,20 @@ class ReducedSystem {
   Eigen::Matrix<double, 12, Eigen::Dynamic> localJacobian(const GeneralElement& g, const SimState& s) const;
   void addRotationCurvature(const SimState& state, const Eigen::Matrix3Xd& g, bool projectToPSD);
 
+  // Where every element's Hessian goes: fixed for the model, shared by its copies.
+  struct Pattern {
+    std::vector<int> simpleElements;
+    std::vector<int> simpleIndex;          // 144 per simple element, -1 where not scattered
+    std::vector<std::vector<int>> colors;  // simple elements grouped so that none share a node
+    std::vector<int> serialSlots;          // simple elements left over after 64 colours
+    std::vector<GeneralElement> general;
+    std::vector<int> rotationBlockIndex;  // 9 per free fragment (3x3 rotation block, column-major)
+  };
+
   const SoftTissueEnergy& energy_;
   const Coupling& coupling_;
   Eigen::SparseMatrix<double> H_;
-  std::vector<int> simpleElements_;
-  std::vector<int> simpleIndex_;          // 144 per simple element, -1 where not scattered
-  std::vector<std::vector<int>> colors_;  // simple elements grouped so that none share a node
-  std::vector<int> serialSlots_;          // simple elements left over after 64 colours
-  std::vector<GeneralElement> general_;
-  std::vector<int> rotationBlockIndex_;  // 9 per free fragment (3x3 rotation block, column-major)
+  std::shared_ptr<const Pattern> pattern_;
 };
 
 }  // namespace orthosim

@@ -53,18 +53,18 @@ std::shared_ptr<const CaseModel> CaseLibrary::build(const CaseEntry& entry, Reso
   return std::make_shared<const CaseModel>(buildCaseModel(loadCaseFile(caseFile(entry)), resolution, options));
 }
 
-std::shared_ptr<const CaseModel> CaseLibrary::model(const std::string& id, Resolution resolution) {
-  const CaseEntry* entry = find(id);
-  if (!entry) throw std::invalid_argument("unknown case '" + id + "'");
-  std::promise<std::shared_ptr<const CaseModel>> promise;
-  std::shared_future<std::shared_ptr<const CaseModel>> future;
+template <class T, class Key, class Build>
+std::shared_ptr<const T> CaseLibrary::once(std::map<Key, std::shared_future<std::shared_ptr<const T>>>& cache,
+                                           const Key& key, const Build& build) {
+  std::promise<std::shared_ptr<const T>> promise;
+  std::shared_future<std::shared_ptr<const T>> future;
   bool builder = false;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    auto it = models_.find({id, resolution});
-    if (it == models_.end()) {
+    auto it = cache.find(key);
+    if (it == cache.end()) {
       future = promise.get_future().share();
-      models_.emplace(std::make_pair(id, resolution), future);
+      cache.emplace(key, future);
       builder = true;
     } else {
       future = it->second;
@@ -72,14 +72,25 @@ std::shared_ptr<const CaseModel> CaseLibrary::model(const std::string& id, Resol
   }
   if (builder) {
     try {
-      promise.set_value(build(*entry, resolution));
+      promise.set_value(build());
     } catch (...) {
       promise.set_exception(std::current_exception());
       const std::lock_guard<std::mutex> lock(mutex_);
-      models_.erase({id, resolution});
+      cache.erase(key);
     }
   }
   return future.get();
+}
+
+std::shared_ptr<const CaseModel> CaseLibrary::model(const std::string& id, Resolution resolution) {
+  const CaseEntry* entry = find(id);
+  if (!entry) throw std::invalid_argument("unknown case '" + id + "'");
+  return once(models_, std::make_pair(id, resolution), [&] { return build(*entry, resolution); });
+}
+
+std::shared_ptr<const Model> CaseLibrary::coarsePrototype(const std::string& id) {
+  const std::shared_ptr<const CaseModel> coarse = model(id, Resolution::Coarse);
+  return once(prototypes_, id, [&] { return std::make_shared<const Model>(coarse->scene); });
 }
 
 bool CaseLibrary::isBuilt(const std::string& id, Resolution resolution) const {

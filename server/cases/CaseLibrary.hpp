@@ -1,6 +1,7 @@
 #pragma once
 // The cases the server has opened, built once per (case, resolution) and shared by every session:
-// a built CaseModel is immutable, each session solves on its own Model of it. Phantom cases are
+// a built CaseModel is immutable, each session solves on its own Model of it, made from one coarse
+// prototype per case whose immutable parts it shares. Phantom cases are
 // written under the data folder the first time they are asked for; tissue meshes are cached there.
 #include <filesystem>
 #include <future>
@@ -12,6 +13,7 @@
 
 #include "cases/CaseCatalog.hpp"
 #include "scene/CaseModel.hpp"
+#include "solver/Model.hpp"
 
 namespace orthosim::server {
 
@@ -27,16 +29,26 @@ class CaseLibrary {
   // building throws (SceneError naming the case file and the defect).
   std::shared_ptr<const CaseModel> model(const std::string& id, Resolution resolution);
   bool isBuilt(const std::string& id, Resolution resolution) const;
+  // The solver model of the coarse case, built once: sessions make theirs from it with
+  // Model(prototype, Model::ShareImmutable{}) and share its scene, energy, couplings, scatter
+  // pattern, rest factorisation and contact surfaces. Nobody solves with the prototype itself.
+  std::shared_ptr<const Model> coarsePrototype(const std::string& id);
 
  private:
   std::string caseFile(const CaseEntry& entry);
   std::shared_ptr<const CaseModel> build(const CaseEntry& entry, Resolution resolution);
+  // The cached value of `key`, or built by `build` once while other callers wait for it; a failed
+  // build is not kept.
+  template <class T, class Key, class Build>
+  std::shared_ptr<const T> once(std::map<Key, std::shared_future<std::shared_ptr<const T>>>& cache, const Key& key,
+                                const Build& build);
 
   std::vector<CaseEntry> catalog_;
   std::filesystem::path dataDir_;
   mutable std::mutex mutex_;
   std::mutex phantomMutex_;  // writing a phantom's files
   std::map<std::pair<std::string, Resolution>, std::shared_future<std::shared_ptr<const CaseModel>>> models_;
+  std::map<std::string, std::shared_future<std::shared_ptr<const Model>>> prototypes_;
 };
 
 }  // namespace orthosim::server

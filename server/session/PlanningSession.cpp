@@ -246,7 +246,7 @@ void PlanningSession::open(MessageReader& r, const json& id) {
           c->fragments = movableFragments(*c->coarse);
           c->probe = SkinFigureProbe(*c->coarse);
           c->lips = lipVertices(*c->coarse);
-          c->model = std::make_unique<Model>(c->coarse->scene);
+          c->model = std::make_unique<Model>(*self->service_.cases().coarsePrototype(caseId), Model::ShareImmutable{});
           c->lastGood = c->model->restState();
         } catch (const std::exception& e) {
           {

@@ -2,6 +2,10 @@
 // reason; harmless oddities are reported as warnings.
 #include <gtest/gtest.h>
 
+#include <thread>
+
+#include "../contact/CubeOnRollers.hpp"
+#include "../contact/Square.hpp"
 #include "mesh/BoxMesh.hpp"
 #include "scene/BlockScene.hpp"
 #include "solver/Model.hpp"
@@ -90,6 +94,46 @@ TEST(Model, LeavesOutElementsThatOnlyMoveWithBone) {
   // The free top layer follows the middle one down, stretched to its rest height at most.
   for (int i = 0; i < s.mesh.numNodes(); ++i)
     if (s.mesh.rest(2, i) == 20) EXPECT_NEAR(r.state.x(2, i), 5.0, 2.0);
+}
+
+}  // namespace
+}  // namespace orthosim
+
+namespace orthosim {
+namespace {
+
+// What every planning session of a case does: its Model shares the prototype's immutable parts
+// (scene, energy, couplings, scatter pattern, rest factorisation, contact surfaces) and solves on
+// its own values, factorisation and contact memo, in its own thread, to the answer of a model
+// built alone.
+TEST(Model, SessionsSharingAPrototypeSolveInParallelLikeAModelBuiltAlone) {
+  auto [scene, top] = test::cubeOnRollers(10.0, 4);
+  scene.fragments = {{"plate", {}, false}};
+  scene.contacts = {{"plate on top", top, test::square(10.0, 30.0, false), "plate", 0}};
+  scene.plan["plate"].translation = {0, 0, -1.5};
+  scene.plan["plate"].rotation = {0.03, 0, 0};
+  scene.plan["plate"].center = {5, 5, 10};
+  Model alone(scene);
+  const SolveResult expected = solveScene(alone);
+  ASSERT_TRUE(expected.converged) << expected.error;
+
+  const Model prototype(scene);
+  Model a(prototype, Model::ShareImmutable{}), b(prototype, Model::ShareImmutable{});
+  EXPECT_EQ(&a.scene(), &prototype.scene());
+  EXPECT_EQ(&a.energy(), &prototype.energy());
+  EXPECT_EQ(&a.coupling(), &prototype.coupling());
+  EXPECT_EQ(&a.restFactor(), &b.restFactor());
+  EXPECT_NE(&a.factor(), &b.factor());
+  EXPECT_NE(a.contact(), b.contact());  // its own memo
+  SolveResult ra, rb;
+  std::thread ta([&] { ra = solveScene(a); }), tb([&] { rb = solveScene(b); });
+  ta.join();
+  tb.join();
+  for (const SolveResult* r : {&ra, &rb}) {
+    ASSERT_TRUE(r->converged) << r->error;
+    EXPECT_GT(r->timings.contactQueries, 0);
+    EXPECT_LT((r->state.x - expected.state.x).cwiseAbs().maxCoeff(), 1e-9);
+  }
 }
 
 }  // namespace
