@@ -14,6 +14,20 @@ test("planning page: slider preview, fine confirm, screenshot", { timeout: 30000
   await withPage(async (page, url) => {
     const pageErrors = [];
     page.on("pageerror", (e) => pageErrors.push(e.message));
+    // What goes over the session's WebSocket: the poses sent, the server's drag readiness and the
+    // faces its frames say they show.
+    const sentPoses = [];
+    const frames = [];
+    let dragReady = false;
+    page.on("websocket", (ws) => {
+      ws.on("framesent", (f) => { if (typeof f.payload === "string" && /"set_poses"/.test(f.payload)) sentPoses.push(JSON.parse(f.payload)); });
+      ws.on("framereceived", (f) => {
+        if (typeof f.payload !== "string") return;
+        const m = JSON.parse(f.payload);
+        if (m.type === "drag_ready") dragReady = true;
+        if (m.type === "frame") frames.push(m.shows);
+      });
+    });
     await page.goto(url);
     await page.waitForFunction(() => document.querySelector("#case-select").options.length >= 5);
     await page.selectOption("#case-select", "phantom-0");
@@ -27,7 +41,11 @@ test("planning page: slider preview, fine confirm, screenshot", { timeout: 30000
     const before = await page.locator("#frame").getAttribute("src");
 
     // Drag-like input: 8 key presses of 0.5 mm move the maxilla 4 mm forward; the number field
-    // follows, and its arrow keys step 0.5 mm too.
+    // follows, and its arrow keys step 0.5 mm too. The poses go out while the slider moves (the
+    // first at once, then at most every 50 ms), each drawn at once from the linear response.
+    const readyBy = Date.now() + 60000;
+    while (!dragReady && Date.now() < readyBy) await page.waitForTimeout(100);
+    assert.ok(dragReady, "the server built the drag response of the rest preview");
     await slider.focus();
     for (let i = 0; i < 8; i++) await page.keyboard.press("ArrowRight");
     assert.equal(Number(await slider.inputValue()), 4);
@@ -45,6 +63,10 @@ test("planning page: slider preview, fine confirm, screenshot", { timeout: 30000
     }, null, { timeout: 60000 });
     const solve = await page.locator("#solve-time").textContent();
     assert.match(solve, /Solved in \d+\.\d+ s/);
+    assert.ok(sentPoses.length >= 2 && sentPoses.length <= 8, `poses sent while dragging: ${sentPoses.length}`);
+    assert.equal(sentPoses.at(-1).poses.maxilla.anterior_mm, 4, "the last pose sent is the slider's");
+    assert.ok(frames.some((f) => f && f.state === "linear" && sentPoses.some((p) => p.id === f.pose_id)),
+      `a frame drew a dragged pose linearly: ${JSON.stringify(frames)}`);
     // The face shown is the converged one once the previews caught up; the frame rate is shown.
     await page.waitForFunction(() => document.querySelector("#solve-state").dataset.state === "converged", null, { timeout: 60000 });
     assert.match(await page.locator("#solve-state").textContent(), /converged \(last solve \d+\.\d+ s/);
