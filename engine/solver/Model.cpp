@@ -22,8 +22,8 @@ Model::Model(Scene sceneIn) : scene_(std::make_shared<const Scene>(std::move(sce
   auto energy = std::make_shared<SoftTissueEnergy>(scene.mesh, material);
   coupling_ = std::make_shared<const Coupling>(scene);
   if (coupling_->numReducedDofs() == 0) throw std::invalid_argument("the scene has no free degrees of freedom");
-  energy_ = energy;  // elementsWithFreedom reads the mesh through it
-  energy->restrictTo(elementsWithFreedom());
+  energy->restrictTo(elementsWithFreedom());  // built mutable, shared read-only from here on
+  energy_ = energy;
   lengthScale_ = scene_->mesh.meanEdgeLength();
   buildContact();
   system_ = std::make_unique<ReducedSystem>(*energy_, *coupling_);
