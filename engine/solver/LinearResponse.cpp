@@ -87,10 +87,11 @@ LinearResponse::LinearResponse(Model& model, const SimState& state, std::vector<
   const Eigen::Index n = static_cast<Eigen::Index>(parameters_.size());
   std::vector<Eigen::Matrix3Xd> dxc(parameters_.size());
   Eigen::MatrixXd rhs(coupling.numReducedDofs(), n);
+  const std::vector<ActiveContact> contacts = model.activeContacts(base_);  // frozen: queried once
   for (Eigen::Index k = 0; k < n; ++k) {
     dxc[k] = constrainedMotion(model, static_cast<int>(k));
     rhs.col(k) = -(model.system().hessianTimes(base_, dxc[k], projected_) +
-                   coupling.reduce(contactForceChange(model, static_cast<int>(k)), base_));
+                   coupling.reduce(contactForceChange(contacts, static_cast<int>(k)), base_));
   }
   const Eigen::MatrixXd dz = model.factor().solveMany(rhs);
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -116,10 +117,10 @@ Eigen::Matrix3Xd LinearResponse::constrainedMotion(const Model& model, int p) co
 //   dg/dp = w x g - H v,
 // with g the node's contact force term, H its Hessian block (as Newton assembles it) and w the
 // rotation axis (zero for a translation).
-Eigen::Matrix3Xd LinearResponse::contactForceChange(const Model& model, int p) const {
+Eigen::Matrix3Xd LinearResponse::contactForceChange(const std::vector<ActiveContact>& contacts, int p) const {
   const PoseParameter& param = parameters_[p];
   Eigen::Matrix3Xd change = Eigen::Matrix3Xd::Zero(3, base_.x.cols());
-  for (const ActiveContact& c : model.activeContacts(base_)) {
+  for (const ActiveContact& c : contacts) {
     if (c.fragment != param.fragment) continue;
     const Eigen::Vector3d g = -c.stiffness * c.penalty.slope(c.depth()) * c.normal;
     const Eigen::Vector3d turn = param.rotation ? Eigen::Vector3d(param.axis.cross(g)) : Eigen::Vector3d::Zero();

@@ -62,7 +62,7 @@ class LinearResponse {
 
  private:
   Eigen::Matrix3Xd constrainedMotion(const Model& model, int p) const;
-  Eigen::Matrix3Xd contactForceChange(const Model& model, int p) const;
+  Eigen::Matrix3Xd contactForceChange(const std::vector<ActiveContact>& contacts, int p) const;
 
   std::vector<PoseParameter> parameters_;
   SimState base_;
