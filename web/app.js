@@ -200,7 +200,10 @@ function axisControl(fragment, axis) {
 function posesChanged() {
   state.posesDirty = true;
   if (state.sendTimer) return;
-  const wait = Math.max(0, state.lastSend + SEND_INTERVAL_MS - performance.now());
+  const wait = state.lastSend + SEND_INTERVAL_MS - performance.now();
+  // The first change of a drag goes out at once (not from a timer, which a fast burst of input
+  // events can overtake); later ones wait for the interval.
+  if (wait <= 0) return flushPoses();
   state.sendTimer = setTimeout(flushPoses, wait);
 }
 

@@ -269,7 +269,7 @@ void PlanningSession::open(MessageReader& r, const json& id) {
         self->reply(std::move(opened), id);
         self->requestFrame();
       },
-      false);
+      SerialWork::Kind::Ordered);
 }
 
 json PlanningSession::caseJson(const OpenCase& c) const {
@@ -446,7 +446,7 @@ void PlanningSession::schedulePreview(const json& id) {
               id);
         }
       },
-      true);
+      SerialWork::Kind::Newest);
 }
 
 void PlanningSession::runPreview(const std::shared_ptr<OpenCase>& c, long long seq, Poses poses, const json& id,
@@ -553,7 +553,7 @@ void PlanningSession::scheduleDragResponse(const std::shared_ptr<OpenCase>& c, l
           self->reply({{"type", "drag_unavailable"}, {"preview", seq}, {"message", e.what()}}, nullptr);
         }
       },
-      true);
+      SerialWork::Kind::FollowUp);
 }
 
 // ---- fine jobs -------------------------------------------------------------------------------
@@ -709,7 +709,7 @@ void PlanningSession::exportSkin(MessageReader& r, const json& id) {
           self->sendError("export_failed", std::string("export failed: ") + e.what(), "", id);
         }
       },
-      false);
+      SerialWork::Kind::Ordered);
 }
 
 // ---- frames ----------------------------------------------------------------------------------
@@ -773,7 +773,7 @@ void PlanningSession::requestFrame() {
                           "", nullptr);
         }
       },
-      true);
+      SerialWork::Kind::Newest);
 }
 
 }  // namespace orthosim::server

@@ -10,7 +10,7 @@ struct SerialWork::State {
   mutable std::mutex mutex;
   std::deque<Task> queue;
   bool running = false;
-  bool runningSupersedable = false;
+  Kind runningKind = Kind::Ordered;
   bool closed = false;
   std::shared_ptr<std::atomic<bool>> cancel;  // of the running task
 
@@ -19,15 +19,19 @@ struct SerialWork::State {
 
 SerialWork::SerialWork(boost::asio::thread_pool& pool) : state_(std::make_shared<State>(pool)) {}
 
-void SerialWork::submit(Body body, bool supersedable) {
+void SerialWork::submit(Body body, Kind kind) {
   const std::lock_guard<std::mutex> lock(state_->mutex);
   if (state_->closed) return;
-  if (supersedable) {
-    std::deque<Task>& q = state_->queue;
-    q.erase(std::remove_if(q.begin(), q.end(), [](const Task& t) { return t.supersedable; }), q.end());
-    if (state_->running && state_->runningSupersedable) state_->cancel->store(true);
+  std::deque<Task>& q = state_->queue;
+  const auto replaceable = [](const Task& t) { return t.kind != Kind::Ordered; };
+  if (kind == Kind::Newest) {
+    q.erase(std::remove_if(q.begin(), q.end(), replaceable), q.end());
+    if (state_->running && state_->runningKind != Kind::Ordered) state_->cancel->store(true);
+  } else if (kind == Kind::FollowUp) {
+    if (std::any_of(q.begin(), q.end(), [](const Task& t) { return t.kind == Kind::Newest; })) return;
+    q.erase(std::remove_if(q.begin(), q.end(), replaceable), q.end());
   }
-  state_->queue.push_back({std::move(body), supersedable});
+  q.push_back({std::move(body), kind});
   if (!state_->running) startNext(state_);
 }
 
@@ -39,7 +43,7 @@ void SerialWork::startNext(const std::shared_ptr<State>& state) {
   Task task = std::move(state->queue.front());
   state->queue.pop_front();
   state->running = true;
-  state->runningSupersedable = task.supersedable;
+  state->runningKind = task.kind;
   state->cancel = std::make_shared<std::atomic<bool>>(false);
   boost::asio::post(state->pool, [state, body = std::move(task.body), cancel = state->cancel] {
     try {

@@ -38,14 +38,14 @@ TEST(SerialWork, TheNewestSupersedableTaskWins) {
   std::atomic<int> started{0}, cancelled{0}, lastRan{0};
   boost::asio::thread_pool pool(2);
   SerialWork work(pool);
-  work.submit(slowTask(started, cancelled), true);
+  work.submit(slowTask(started, cancelled), SerialWork::Kind::Newest);
   ASSERT_TRUE(waitUntil([&] { return started > 0; }, kDeadline)) << "the first task never started";
   for (int i = 1; i <= 10; ++i)
     work.submit(
         [&, i](const std::atomic<bool>& cancel) {
           if (!cancel) lastRan = i;
         },
-        true);
+        SerialWork::Kind::Newest);
   ASSERT_TRUE(waitUntil([&] { return work.idle(); }, kDeadline)) << "the work never became idle";
   EXPECT_EQ(cancelled, 1) << "the running preview was cancelled";
   EXPECT_EQ(lastRan, 10);
@@ -63,11 +63,53 @@ TEST(SerialWork, OtherTasksRunInOrderAndAreNeverDropped) {
           std::lock_guard<std::mutex> l(m);
           order.push_back(i);
         },
-        false);
-    work.submit([](const std::atomic<bool>&) {}, true);
+        SerialWork::Kind::Ordered);
+    work.submit([](const std::atomic<bool>&) {}, SerialWork::Kind::Newest);
   }
   ASSERT_TRUE(waitUntil([&] { return work.idle(); }, kDeadline)) << "the work never became idle";
   EXPECT_EQ(order, (std::vector<int>{0, 1, 2, 3, 4}));
+  pool.join();
+}
+
+// The hang of three sessions: a preview that finished while a newer one waited scheduled its drag
+// response, which dropped the waiting preview, so that pose never got an answer.
+TEST(SerialWork, AFollowUpYieldsToANewerTaskAndDropsNothing) {
+  std::atomic<int> newerRan{0}, followUpRan{0}, finished{0};
+  std::atomic<bool> release{false};
+  boost::asio::thread_pool pool(2);
+  SerialWork work(pool);
+  std::atomic<bool> running{false};
+  work.submit(
+      [&](const std::atomic<bool>&) {
+        running = true;
+        waitUntil([&] { return release.load(); }, kDeadline);  // finishes whatever the cancel flag says
+        work.submit([&](const std::atomic<bool>& cancel) { followUpRan += cancel ? 0 : 1; },
+                    SerialWork::Kind::FollowUp);
+        ++finished;
+      },
+      SerialWork::Kind::Newest);
+  ASSERT_TRUE(waitUntil([&] { return running.load(); }, kDeadline)) << "the first task never started";
+  work.submit([&](const std::atomic<bool>& cancel) { newerRan += cancel ? 0 : 1; }, SerialWork::Kind::Newest);
+  release = true;
+  ASSERT_TRUE(waitUntil([&] { return finished > 0 && work.idle(); }, kDeadline)) << "the work never became idle";
+  EXPECT_EQ(newerRan, 1) << "the newer task waiting behind the running one still ran";
+  EXPECT_EQ(followUpRan, 0) << "the follow-up of an overtaken task yields to the newer one";
+
+  // Without a newer task, the follow-up runs.
+  release = false;
+  running = false;
+  work.submit(
+      [&](const std::atomic<bool>&) {
+        running = true;
+        waitUntil([&] { return release.load(); }, kDeadline);
+        work.submit([&](const std::atomic<bool>& cancel) { followUpRan += cancel ? 0 : 1; },
+                    SerialWork::Kind::FollowUp);
+      },
+      SerialWork::Kind::Ordered);
+  ASSERT_TRUE(waitUntil([&] { return running.load(); }, kDeadline));
+  release = true;
+  ASSERT_TRUE(waitUntil([&] { return work.idle(); }, kDeadline));
+  EXPECT_EQ(followUpRan, 1);
   pool.join();
 }
 
@@ -75,10 +117,10 @@ TEST(SerialWork, CloseCancelsAndRefuses) {
   std::atomic<int> started{0}, cancelled{0};
   boost::asio::thread_pool pool(1);
   SerialWork work(pool);
-  work.submit(slowTask(started, cancelled), false);
+  work.submit(slowTask(started, cancelled), SerialWork::Kind::Ordered);
   ASSERT_TRUE(waitUntil([&] { return started > 0; }, kDeadline)) << "the task never started";
   work.close();
-  work.submit(slowTask(started, cancelled), false);
+  work.submit(slowTask(started, cancelled), SerialWork::Kind::Ordered);
   ASSERT_TRUE(waitUntil([&] { return work.idle(); }, kDeadline)) << "the work never became idle";
   EXPECT_EQ(cancelled, 1);
   EXPECT_EQ(started, 1);
