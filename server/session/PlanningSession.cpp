@@ -268,6 +268,8 @@ void PlanningSession::open(MessageReader& r, const json& id) {
         opened["seconds"] = secondsSince(t0);
         self->reply(std::move(opened), id);
         self->requestFrame();
+        // The drag view of the rest pose, so the first drag is drawn at once; preview 0 is rest.
+        self->scheduleDragResponse(c, 0, c->lastGood);
       },
       SerialWork::Kind::Ordered);
 }
