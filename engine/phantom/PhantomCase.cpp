@@ -24,8 +24,10 @@ nlohmann::json phantomCaseJson(const Phantom& p) {
              {{{"landmark", "stomion"}, {"radius_mm", 25}, {"density", 3}},
               {{"landmark", "pronasale"}, {"radius_mm", 18}, {"density", 3}},
               {{"landmark", "soft_pogonion"}, {"radius_mm", 18}, {"density", 2}}}}}},
-          // Lips and cheeks slide on the teeth and bone of both jaws.
-          {"contact", {{{"bones", {"mandible", "skull"}}, {"range_mm", 15}}}},
+          // Lips and cheeks slide on the teeth and bone of both jaws. The phantom has no tongue:
+          // the floor of its mouth, 35-41 mm below the skin, would in a patient be attached to
+          // the mandible, not slide on it; the lips lie within 16 mm, the cheeks within 28.
+          {"contact", {{{"bones", {"mandible", "skull"}}, {"range_mm", 15}, {"max_depth_mm", 30}}}},
           {"plan", {{"maxilla", {{"translation_mm", {-5, 0, 0}}}}}}};
 }
 

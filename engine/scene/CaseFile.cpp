@@ -252,6 +252,11 @@ CaseSpec loadCaseFile(const std::string& path) {
       if (contact.bones.empty()) r.fail("must list at least one bone", "bones");
       contact.rangeMm = r.number("range_mm", contact.rangeMm);
       if (!(contact.rangeMm > 0 && contact.rangeMm <= 100)) r.fail("must lie in (0, 100] mm", "range_mm");
+      if (r.has("max_depth_mm")) {
+        contact.maxDepthMm = r.number("max_depth_mm");
+        if (!(contact.maxDepthMm > 0 && contact.maxDepthMm <= 200)) r.fail("must lie in (0, 200] mm", "max_depth_mm");
+        if (c.skin.empty()) r.fail("needs the case's skin surface (tissue.skin) to measure depth from", "max_depth_mm");
+      }
       if (r.has("stiffness_n_per_mm")) {
         contact.stiffness = r.number("stiffness_n_per_mm");
         if (!(contact.stiffness > 0 && std::isfinite(contact.stiffness)))

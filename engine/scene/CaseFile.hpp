@@ -58,6 +58,10 @@ struct CaseFixed {
 struct CaseContact {
   std::vector<std::string> bones;
   double rangeMm = 15;
+  // Only nodes within this distance of the skin at rest (the lips and cheeks); 0: no limit. The
+  // floor of the mouth and the tongue lie deeper and are attached to the jaw (mylohyoid,
+  // genioglossus) rather than sliding on it.
+  double maxDepthMm = 0;
   double stiffness = 0;  // N/mm per node; 0: the default (20 E h)
 };
 

@@ -52,6 +52,14 @@ std::vector<ContactSpec> caseContacts(const CaseSpec& spec, const CaseTissue& ti
   for (size_t k = 0; k < candidates.size(); ++k)
     points.col(static_cast<Eigen::Index>(k)) = scene.mesh.rest.col(candidates[k]);
   if (candidates.empty()) return out;
+  // How deep below the skin each candidate lies, for contacts limited to the lips and cheeks.
+  Eigen::VectorXd depth;
+  for (const CaseContact& c : spec.contacts)
+    if (c.maxDepthMm > 0 && depth.size() == 0) {
+      if (tissue.skin.numTriangles() == 0)
+        throw SceneError(spec.file + ": contact: max_depth_mm needs the case's skin surface, and it has none");
+      depth = distancesToSurface(tissue.skin.vertices, tissue.skin.triangles, points);
+    }
 
   for (size_t c = 0; c < spec.contacts.size(); ++c)
     for (const std::string& boneName : spec.contacts[c].bones) {
@@ -75,7 +83,9 @@ std::vector<ContactSpec> caseContacts(const CaseSpec& spec, const CaseTissue& ti
         contact.stiffness = spec.contacts[c].stiffness;
         const Eigen::VectorXd d = distancesToSurface(contact.surface.vertices, contact.surface.triangles, points);
         for (size_t k = 0; k < candidates.size(); ++k)
-          if (d[static_cast<Eigen::Index>(k)] <= spec.contacts[c].rangeMm) contact.nodes.push_back(candidates[k]);
+          if (d[static_cast<Eigen::Index>(k)] <= spec.contacts[c].rangeMm &&
+              (spec.contacts[c].maxDepthMm <= 0 || depth[static_cast<Eigen::Index>(k)] <= spec.contacts[c].maxDepthMm))
+            contact.nodes.push_back(candidates[k]);
         if (!contact.nodes.empty()) out.push_back(std::move(contact));
       }
     }

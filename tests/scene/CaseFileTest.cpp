@@ -72,6 +72,12 @@ TEST_F(CaseFileTest, ReadsBonesCutsLandmarksAndPlan) {
   EXPECT_EQ(c.meshing.refine[0].center, Eigen::Vector3d(-50, 0, -20));
   EXPECT_EQ(c.plan.at("maxilla").translation, Eigen::Vector3d(-5, 0, 0));
   EXPECT_EQ(c.landmarks.size(), 5u);
+  EXPECT_TRUE(c.contacts.empty());
+  j["contact"] = {{{"bones", {"mandible", "skull"}}, {"max_depth_mm", 25}}};
+  const CaseSpec withContact = load(j);
+  ASSERT_EQ(withContact.contacts.size(), 1u);
+  EXPECT_EQ(withContact.contacts[0].maxDepthMm, 25.0);
+  EXPECT_EQ(withContact.contacts[0].rangeMm, 15.0);
 }
 
 TEST_F(CaseFileTest, EachMistakeIsNamedWithItsField) {
@@ -118,6 +124,9 @@ TEST_F(CaseFileTest, EachMistakeIsNamedWithItsField) {
       {{"bone", "mandible"}, {"fragment", "chin"}, {"planes", {{{"point_mm", {0, 0, 0}}, {"normal", {0, 0, 0}}}}}}};
   j.erase("plan");
   expect(j, "cuts[0].planes[0].normal: must not be zero");
+  j = minimal();
+  j["contact"] = {{{"bones", {"mandible"}}, {"max_depth_mm", -3}}};
+  expect(j, "contact[0].max_depth_mm: must lie in (0, 200] mm");
   j = minimal();
   j["bonez"] = 1;
   expect(j, "unknown field 'bonez'");

@@ -258,6 +258,38 @@ TEST_F(PhantomCase, ContactKeepsLipsAndCheeksOutOfTeethAndBoneInASetback) {
   EXPECT_EQ(b.timings.contactQueries, 0);
 }
 
+// The phantom's contact reaches the lips and cheeks (within max_depth_mm of the skin), not the
+// floor of its mouth, which in a patient is attached to the mandible: without the limit, the
+// floor's nodes next to the lingual alveolus join, 35-41 mm below the skin (issue 18: they made a
+// setback take 9 Newton iterations instead of 4).
+TEST_F(PhantomCase, ContactStopsAtTheDepthOfLipsAndCheeks) {
+  ASSERT_EQ(spec().contacts.size(), 1u);
+  const double limit = spec().contacts[0].maxDepthMm;
+  EXPECT_EQ(limit, 30.0);
+  const SurfaceMesh& skin = coarse().tissue.skin;
+  size_t limited = 0;
+  for (const ContactSpec& c : coarse().scene.contacts) {
+    limited += c.nodes.size();
+    const Eigen::VectorXd depth =
+        distancesToSurface(skin.vertices, skin.triangles, nodes(coarse().scene.mesh, c.nodes));
+    EXPECT_LE(depth.maxCoeff(), limit + 1e-9) << c.name;
+  }
+  CaseSpec unlimited = spec();
+  unlimited.contacts[0].maxDepthMm = 0;
+  size_t all = 0, deep = 0;
+  for (const ContactSpec& c : caseScene(unlimited, coarse().tissue).contacts) {
+    all += c.nodes.size();
+    const Eigen::VectorXd depth =
+        distancesToSurface(skin.vertices, skin.triangles, nodes(coarse().scene.mesh, c.nodes));
+    deep += static_cast<size_t>((depth.array() > limit).count());
+  }
+  std::cout << "contact nodes: " << limited << " within " << limit << " mm of the skin, " << all
+            << " without the limit\n";
+  EXPECT_EQ(all - limited, deep) << "the limit drops exactly the deeper nodes";
+  EXPECT_GT(deep, 100u) << "the floor of the mouth lies deeper than the limit";
+  EXPECT_GT(limited, deep) << "lips and cheeks keep most of the contact";
+}
+
 // Issue 18, point 2: on a 10 mm setback with the lips-teeth contact, the coarse preview puts the
 // lower and upper lip and the soft chin within 1 mm of the fine confirm. Before the mouth slit's
 // flat walls were split into short edges (mesh/LongEdgeSplit) the fine mesh kept them as a few
