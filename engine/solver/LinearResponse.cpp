@@ -133,6 +133,10 @@ Eigen::VectorXd LinearResponse::deltaTo(const std::vector<RigidPose>& poses) con
   if (poses.size() != base_.fragments.size())
     throw std::invalid_argument("poses for " + std::to_string(poses.size()) + " fragments, the state has " +
                                 std::to_string(base_.fragments.size()));
+  // Each fragment's pivot: the one its rotations turn about (its translations' pivot otherwise).
+  std::map<int, Eigen::Vector3d> pivot;
+  for (const PoseParameter& q : parameters_)
+    if (q.rotation || !pivot.count(q.fragment)) pivot[q.fragment] = q.pivot;
   Eigen::VectorXd delta(static_cast<Eigen::Index>(parameters_.size()));
   for (size_t k = 0; k < parameters_.size(); ++k) {
     const PoseParameter& p = parameters_[k];
@@ -140,9 +144,7 @@ Eigen::VectorXd LinearResponse::deltaTo(const std::vector<RigidPose>& poses) con
     const RigidPose& to = poses[p.fragment];
     const Eigen::Matrix3d turn = to.R * from.R.transpose();
     // to = T o from with T(y) = c + turn (y - c) + t, c the fragment's pivot.
-    Eigen::Vector3d c = p.pivot;
-    for (const PoseParameter& q : parameters_)
-      if (q.fragment == p.fragment && q.rotation) c = q.pivot;
+    const Eigen::Vector3d& c = pivot.at(p.fragment);
     const Eigen::Vector3d t = to.b - c - turn * (from.b - c);
     delta[k] = p.axis.dot(p.rotation ? vectorFromRotation(turn) : t);
   }
