@@ -113,6 +113,7 @@ int main(int argc, char** argv) {
 
   orthosim::cli::ServeOptions serveOptions;
   serveOptions.webDir = ORTHOSIM_WEB_DIR;
+  serveOptions.builtinDir = ORTHOSIM_CASES_DIR;
   auto* serve = app.add_subcommand("serve", "Serve the planning API and the browser page over HTTP");
   serve->add_option("--host", serveOptions.host, "Address to bind (default 127.0.0.1: this machine only)");
   serve->add_option("--port", serveOptions.port, "TCP port; 0 picks a free one")->check(CLI::Range(0, 65535));
@@ -122,6 +123,8 @@ int main(int argc, char** argv) {
                     "~/.local/share/orthosim)");
   serve->add_option("--cases", serveOptions.casesDir,
                     "Folder of case folders (DIR/<id>/case.json) to serve besides the phantom");
+  serve->add_option("--builtin-cases", serveOptions.builtinDir,
+                    "Folder of the shipped cases (default: the source tree's cases/; holds the ArtiSynth face)");
   serve->add_option("--token", serveOptions.token, "Access token required on /api and /ws (default: $ORTHOSIM_TOKEN)");
   serve->add_option("--token-file", serveOptions.tokenFile,
                     "Without --token or $ORTHOSIM_TOKEN: read the token from this file, or write a random one there");

@@ -26,14 +26,29 @@ json realFaceCaseJson(const fs::path& face, const json& plan) {
              {"bond_distance_mm", 2.0},
              {"fixed", true}},
             {{"name", "mandible"}, {"surface", f("mandible.obj")}, {"nodes", f("attached_to_mandible.txt")}}}},
-          // Read off maxilla.obj: incisor tip at z 99 mm, so the apex about 23 mm above it; the
-          // palate's back end; the first molars.
+          // Read off the bones and the skin (cases/artisynth_face): the maxilla's incisor tip at z
+          // 99 mm, so its apex about 23 mm above; the palate's back end; the upper and lower first
+          // molars (tops of the crowns); gonion, the most posterior-inferior point of each angle.
+          // Soft tissue: the most anterior midline skin point of each height band (see
+          // anteriorMostMidlineVertex) and, for the stomion, the front of the lips' contact line.
           {"landmarks",
-           {{"upper_incisor_apex", {52, 0, 122}},
-            {"PNS", {106.5, 0, 123.6}},
-            {"upper_molar_left", {80, -25, 103}},
-            {"upper_molar_right", {80, 25, 103}}}},
-          {"cuts", {{{"template", "le_fort_1"}, {"bone", "midface"}}}},
+           {{"hard",
+             {{"upper_incisor_apex", {52, 0, 122}},
+              {"PNS", {106.5, 0, 123.6}},
+              {"upper_molar_left", {80, -25, 103}},
+              {"upper_molar_right", {80, 25, 103}},
+              {"lower_molar_left", {81.9, -23.7, 99.1}},
+              {"lower_molar_right", {81.9, 23.7, 99.1}},
+              {"gonion_left", {134.3, -46.6, 78.9}},
+              {"gonion_right", {134.3, 46.6, 78.9}}}},
+            {"soft",
+             {{"pronasale", {20.5, 0, 138.3}},
+              {"subnasale", {32.6, 0, 123.3}},
+              {"labrale_superius", {37.4, 0, 101.6}},
+              {"stomion", {41.1, 0, 97.5}},
+              {"labrale_inferius", {42.3, 0, 88.0}},
+              {"soft_pogonion", {48.3, 0, 63.1}}}}}},
+          {"cuts", {{{"template", "le_fort_1"}, {"bone", "midface"}}, {{"template", "bsso"}, {"bone", "mandible"}}}},
           // Lips and cheeks slide on the teeth of both jaws.
           {"contact", {{{"bones", {"midface", "mandible"}}, {"range_mm", 15}}}},
           {"plan", plan}};

@@ -9,10 +9,20 @@
 namespace orthosim::server {
 namespace fs = std::filesystem;
 
-std::vector<CaseEntry> builtInCases() {
+std::vector<CaseEntry> builtInCases(const fs::path& shipped) {
   std::vector<CaseEntry> cases;
   for (const PhantomVariant& v : phantomVariants())
-    cases.push_back({"phantom-" + std::to_string(v.index), v.name, v.description, "phantom", v.index, {}});
+    cases.push_back({"phantom-" + std::to_string(v.index), v.name, v.description, "phantom", v.index, {}, {}});
+  std::error_code ec;
+  if (!shipped.empty() && fs::is_regular_file(shipped / "artisynth_face" / "face_volume.node", ec))
+    cases.push_back({kArtisynthFaceId,
+                     "ArtiSynth face",
+                     "a real adult face (the ArtiSynth Badin model: 37098 tetrahedra; BSD-style licence, "
+                     "cases/artisynth_face/README.md): Le Fort I and BSSO, lips-teeth contact",
+                     "artisynth",
+                     -1,
+                     {},
+                     shipped / "artisynth_face"});
   return cases;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
-// The cases a client can open: the built-in phantom's variants, and the case folders of
-// `serve --cases DIR` (each DIR/<id>/case.json, docs/scene-format.md).
+// The cases a client can open: the built-in phantom's variants, the ArtiSynth face shipped with
+// the project (cases/artisynth_face), and the case folders of `serve --cases DIR` (each
+// DIR/<id>/case.json, docs/scene-format.md).
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,13 +13,17 @@ struct CaseEntry {
   std::string id;                  // stable identifier a client names the case by, e.g. "phantom-0"
   std::string name;                // short name, e.g. "class-I"
   std::string description;         // for a human
-  std::string source;              // where it comes from: "phantom" or "folder"
+  std::string source;              // where it comes from: "phantom", "artisynth" or "folder"
   int phantomVariant = -1;         // for source "phantom"
   std::filesystem::path caseFile;  // for source "folder": DIR/<id>/case.json
+  std::filesystem::path folder;    // for source "artisynth": the shipped face's files
 };
 
-// The phantom's variants, in variant order (see phantom/Phantom.hpp).
-std::vector<CaseEntry> builtInCases();
+inline constexpr const char* kArtisynthFaceId = "artisynth-face";
+
+// The phantom's variants, in variant order (see phantom/Phantom.hpp), then the ArtiSynth face when
+// `shipped` holds it (shipped/artisynth_face/face_volume.node).
+std::vector<CaseEntry> builtInCases(const std::filesystem::path& shipped = {});
 
 // Every DIR/<id>/case.json whose <id> is a valid identifier, sorted by id. Folders that are not
 // cases (no case.json, bad name, unreadable or invalid case file) are left out with a line in

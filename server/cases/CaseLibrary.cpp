@@ -2,8 +2,11 @@
 
 #include <unistd.h>
 
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 
+#include "eval/RealFace.hpp"
 #include "phantom/PhantomCase.hpp"
 
 namespace orthosim::server {
@@ -18,7 +21,36 @@ const CaseEntry* CaseLibrary::find(const std::string& id) const {
   return nullptr;
 }
 
+// The shipped face's case file names the shipped files in place (never copied); written into the
+// data folder and rewritten whenever it differs, e.g. after the shipped folder moved.
+std::string CaseLibrary::artisynthCaseFile(const CaseEntry& entry) {
+  const std::lock_guard<std::mutex> lock(phantomMutex_);
+  const fs::path dir = dataDir_ / "cases" / entry.id;
+  const fs::path file = dir / "case.json";
+  const std::string text = realFaceCaseJson(fs::absolute(entry.folder), nlohmann::json::object()).dump(2) + "\n";
+  {
+    std::ifstream in(file);
+    const std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in && old == text) return file.string();
+  }
+  fs::create_directories(dir);
+  const fs::path tmp = dir / ("case.json.writing-" + std::to_string(::getpid()));
+  {
+    std::ofstream out(tmp);
+    out << text;
+    out.close();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(tmp, ignored);
+      throw std::runtime_error("cannot write the case " + entry.id + " into " + dir.string());
+    }
+  }
+  fs::rename(tmp, file);  // atomic: a reader sees the old file or the new one
+  return file.string();
+}
+
 std::string CaseLibrary::caseFile(const CaseEntry& entry) {
+  if (entry.source == "artisynth") return artisynthCaseFile(entry);
   if (entry.source != "phantom") return entry.caseFile.string();
   // Written once per data folder; the phantom is deterministic, so an existing one is reused.
   const std::lock_guard<std::mutex> lock(phantomMutex_);

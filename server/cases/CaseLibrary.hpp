@@ -36,6 +36,7 @@ class CaseLibrary {
 
  private:
   std::string caseFile(const CaseEntry& entry);
+  std::string artisynthCaseFile(const CaseEntry& entry);
   std::shared_ptr<const CaseModel> build(const CaseEntry& entry, Resolution resolution);
   // The cached value of `key`, or built by `build` once while other callers wait for it; a failed
   // build is not kept.
@@ -46,7 +47,7 @@ class CaseLibrary {
   std::vector<CaseEntry> catalog_;
   std::filesystem::path dataDir_;
   mutable std::mutex mutex_;
-  std::mutex phantomMutex_;  // writing a phantom's files
+  std::mutex phantomMutex_;  // writing a built-in case's files
   std::map<std::pair<std::string, Resolution>, std::shared_future<std::shared_ptr<const CaseModel>>> models_;
   std::map<std::string, std::shared_future<std::shared_ptr<const Model>>> prototypes_;
 };

@@ -123,13 +123,14 @@ int runCompare(const CompareOptions& options);
 
 struct ServeOptions {
   std::string host = "127.0.0.1";
-  int port = 8080;        // 0: any free port; the chosen one is printed as "listening on http://HOST:PORT"
-  std::string webDir;     // the browser page folder
-  std::string dataDir;    // empty: $ORTHOSIM_DATA, else $XDG_DATA_HOME/orthosim, else ~/.local/share/orthosim
-  std::string casesDir;   // case folders besides the phantom (optional)
-  std::string token;      // empty: $ORTHOSIM_TOKEN if set, else the token file's
-  std::string tokenFile;  // read, or made with a random token when absent (net/TokenFile.hpp)
-  bool insecure = false;  // allow a bind off the loopback without a token
+  int port = 8080;         // 0: any free port; the chosen one is printed as "listening on http://HOST:PORT"
+  std::string webDir;      // the browser page folder
+  std::string dataDir;     // empty: $ORTHOSIM_DATA, else $XDG_DATA_HOME/orthosim, else ~/.local/share/orthosim
+  std::string casesDir;    // case folders besides the phantom (optional)
+  std::string builtinDir;  // the shipped cases (the ArtiSynth face); absent or empty: the phantom only
+  std::string token;       // empty: $ORTHOSIM_TOKEN if set, else the token file's
+  std::string tokenFile;   // read, or made with a random token when absent (net/TokenFile.hpp)
+  bool insecure = false;   // allow a bind off the loopback without a token
   std::vector<std::string> allowedOrigins, allowedHosts;
   bool warmUp = true;  // build the phantom's coarse model at start
   int fineWorkers = 1;

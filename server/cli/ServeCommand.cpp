@@ -35,12 +35,14 @@ net::ServerOptions serverOptions(const ServeOptions& options) {
   server.access.allowedHosts = options.allowedHosts;
   server.planning.dataDir = fs::absolute(options.dataDir.empty() ? defaultDataDir() : fs::path(options.dataDir));
   fs::create_directories(server.planning.dataDir);
-  server.planning.cases = server::builtInCases();
+  server.planning.cases = server::builtInCases(options.builtinDir);
+  if (!options.builtinDir.empty() && server.planning.cases.size() == server::builtInCases({}).size())
+    std::cerr << "orthosim serve: no ArtiSynth face in " << options.builtinDir << " (--builtin-cases): phantom only\n";
   if (!options.casesDir.empty()) {
     std::vector<std::string> skipped;
     for (server::CaseEntry& c : server::folderCases(options.casesDir, &skipped)) {
-      if (c.id.rfind("phantom-", 0) == 0) {
-        std::cerr << "orthosim serve: case folder " << c.id << " skipped: the name is the built-in phantom's\n";
+      if (c.id.rfind("phantom-", 0) == 0 || c.id == server::kArtisynthFaceId) {
+        std::cerr << "orthosim serve: case folder " << c.id << " skipped: the name is a built-in case's\n";
         continue;
       }
       server.planning.cases.push_back(std::move(c));

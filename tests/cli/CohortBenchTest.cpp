@@ -165,10 +165,9 @@ TEST_F(CohortBench, TwoPatientsTablePlotAndRatios) {
   EXPECT_EQ(j["plot"]["points"].size(), 4u);  // coarse and fine of each patient
 }
 
-// The real face's ratios alone (--patients 0): computed, finite, flagged by their bands. Skipped
-// without ../shared.
+// The real face's ratios alone (--patients 0): computed, finite, flagged by their bands.
 TEST_F(CohortBench, RealFaceRatiosAreComputedAndFlagged) {
-  const fs::path face = fs::path(ORTHOSIM_SHARED_DIR) / "cases" / "artisynth_face";
+  const fs::path face = fs::path(ORTHOSIM_CASES_DIR) / "artisynth_face";
   SKIP_WITHOUT_SHARED_DATA(face / "face_volume.node", face / "face_volume.ele", face / "face_surface.obj",
                            face / "maxilla.obj", face / "fixed_to_skull.txt", face / "deep_surface.txt",
                            face / "mandible.obj", face / "attached_to_mandible.txt");

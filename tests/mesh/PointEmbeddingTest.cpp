@@ -181,7 +181,7 @@ TEST(PointEmbedding, TwentyThousandPointsInTwentyThousandTets) {
 }
 
 TEST(PointEmbedding, RealFaceSurfaceVerticesEmbedOntoTheirNodes) {
-  const fs::path dir = fs::path(ORTHOSIM_SHARED_DIR) / "cases" / "artisynth_face";
+  const fs::path dir = fs::path(ORTHOSIM_CASES_DIR) / "artisynth_face";
   SKIP_WITHOUT_SHARED_DATA(dir / "face_volume.node", dir / "face_volume.ele", dir / "face_surface.obj",
                            dir / "face_surface_vertex_to_node.txt");
   const TetMesh face = readTetgen((dir / "face_volume.node").string(), (dir / "face_volume.ele").string()).mesh;

@@ -397,7 +397,7 @@ TEST(MeshQuality, RegularTetAndInvertedTet) {
 }
 
 TEST(MeshQuality, ArtisynthFace) {
-  const fs::path face = fs::path(ORTHOSIM_SHARED_DIR) / "cases" / "artisynth_face";
+  const fs::path face = fs::path(ORTHOSIM_CASES_DIR) / "artisynth_face";
   SKIP_WITHOUT_SHARED_DATA(face / "face_volume.node", face / "face_volume.ele");
   const TetMesh m = readTetgen((face / "face_volume.node").string(), (face / "face_volume.ele").string()).mesh;
   const MeshQuality q = measureQuality(m);

@@ -1,7 +1,7 @@
 // Bonded groups derived from a bone surface (issue 3, "when a bone comes without a bonded group"):
 // candidates are selected by their distance to the bone, the report gives the count and the
 // distances, an empty selection is reported rather than thrown, and on the real ArtiSynth face the
-// derived mandible group recovers the demo's attached nodes (skipped without ../shared).
+// derived mandible group recovers the demo's attached nodes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -127,7 +127,7 @@ TEST(BoneContact, RefusesBadInputNamingTheDefect) {
             std::string::npos);
 }
 
-const fs::path kFace = fs::path(ORTHOSIM_SHARED_DIR) / "cases" / "artisynth_face";
+const fs::path kFace = fs::path(ORTHOSIM_CASES_DIR) / "artisynth_face";
 
 TEST(BoneContact, RealFaceDerivedMandibleGroupRecoversTheAttachedNodes) {
   SKIP_WITHOUT_SHARED_DATA(kFace / "face_volume.node", kFace / "face_volume.ele", kFace / "deep_surface.txt",

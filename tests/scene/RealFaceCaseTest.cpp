@@ -1,9 +1,9 @@
-// The real ArtiSynth face (../shared/cases/artisynth_face) loaded as a case, through the same code
+// The real ArtiSynth face (cases/artisynth_face, shipped with the project) loaded as a case, through the same code
 // path as user data: tetrahedra, bone surfaces, node sets. It gives node sets for the skull and the
 // mandible but none for the maxilla, so the tissue on the maxilla is derived from the deep surface
 // near the bone and joins the skull's set as one midface bone; a Le Fort I cut then separates the
 // maxilla, blended over 10 mm at the cut as for any case. A Le Fort I advancement and a mandibular
-// setback move the face as published ratios say. Skipped without ../shared.
+// setback move the face as published ratios say.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 namespace orthosim {
 namespace {
 
-const fs::path kFace = fs::path(ORTHOSIM_SHARED_DIR) / "cases" / "artisynth_face";
+const fs::path kFace = fs::path(ORTHOSIM_CASES_DIR) / "artisynth_face";
 
 class RealFaceCase : public ::testing::Test {
  protected:
@@ -41,7 +41,7 @@ class RealFaceCase : public ::testing::Test {
     if (!dir_.empty()) fs::remove_all(dir_);
   }
 
-  // The case file as a user would write it, pointing into ../shared (never copied): the one the
+  // The case file as a user would write it, pointing into cases/artisynth_face (never copied): the one the
   // cohort bench measures the face's ratios on (eval/RealFace).
   CaseSpec writeCase(const nlohmann::json& plan) {
     std::ofstream(dir_ / "case.json") << realFaceCaseJson(kFace, plan).dump(2);
@@ -77,9 +77,15 @@ TEST_F(RealFaceCase, DerivesTheMaxillaGroupFromTheDeepSurfaceAndReportsIt) {
   Eigen::Matrix3Xd pts(3, derived.size());
   for (size_t k = 0; k < derived.size(); ++k) pts.col(k) = m.tissue.mesh.rest.col(derived[k]);
   EXPECT_LE(distancesToSurface(bone.vertices, bone.triangles, pts).maxCoeff(), 2.0 + 1e-9);
-  // The cut makes the maxilla, with blended tissue at the Le Fort I level.
-  EXPECT_EQ(m.coupling.fragments, (std::vector<std::string>{"midface", "mandible", "maxilla"}));
+  // The cuts make the maxilla, with blended tissue at the Le Fort I level, and the BSSO's rami.
+  EXPECT_EQ(m.coupling.fragments,
+            (std::vector<std::string>{"midface", "mandible", "maxilla", "ramus_left", "ramus_right"}));
   EXPECT_GT(m.coupling.nodes[2].size(), 100u);
+  std::cout << "bonded nodes: mandible " << m.coupling.nodes[1].size() << ", rami " << m.coupling.nodes[3].size()
+            << " / " << m.coupling.nodes[4].size() << "\n";
+  EXPECT_GT(m.coupling.nodes[1].size(), 50u) << "the tooth-bearing mandible keeps the chin's tissue";
+  EXPECT_GT(m.coupling.nodes[3].size(), 20u);
+  EXPECT_GT(m.coupling.nodes[4].size(), 20u);
   EXPECT_GT(m.coupling.blended.size(), 50u);
   // Bone groups win over the fixed set: no node is both fixed and bonded.
   std::vector<char> bonded(m.scene.mesh.numNodes(), 0);
@@ -100,6 +106,27 @@ TEST_F(RealFaceCase, DerivesTheMaxillaGroupFromTheDeepSurfaceAndReportsIt) {
   }
   for (const char* f : {"maxilla", "mandible"})
     EXPECT_NE(std::find(carriers.begin(), carriers.end(), f), carriers.end()) << f;
+}
+
+// The landmarks read off the shipped surfaces lie on them: the soft ones on the skin (the server
+// reports those within 2 mm of it), the mandible's on the mandible, and the BSSO's plane lies
+// behind the lower molars.
+TEST_F(RealFaceCase, LandmarksLieOnTheirSurfaces) {
+  const CaseSpec spec = writeCase(nlohmann::json::object());
+  const SurfaceMesh skin = importSurface((kFace / "face_surface.obj").string());
+  const SurfaceMesh mandible = importSurface((kFace / "mandible.obj").string());
+  const auto distance = [](const SurfaceMesh& s, const Eigen::Vector3d& p) {
+    return distancesToSurface(s.vertices, s.triangles, p).minCoeff();
+  };
+  for (const char* name :
+       {"pronasale", "subnasale", "labrale_superius", "stomion", "labrale_inferius", "soft_pogonion"})
+    EXPECT_LT(distance(skin, spec.landmarks.at(name)), 0.5) << name;
+  for (const char* name : {"lower_molar_left", "lower_molar_right", "gonion_left", "gonion_right"})
+    EXPECT_LT(distance(mandible, spec.landmarks.at(name)), 0.5) << name;
+  for (const char* side : {"left", "right"})
+    EXPECT_GT(spec.landmarks.at(std::string("gonion_") + side).x(),
+              spec.landmarks.at(std::string("lower_molar_") + side).x() + 30)
+        << "gonion lies far behind the molars (+x is posterior)";
 }
 
 TEST_F(RealFaceCase, LeFortOneAdvancementMovesTheUpperLipAndLittleElse) {

@@ -121,6 +121,39 @@ TEST(PlanningWorkflow, CoarsePreviewThenFineConfirmThenExport) {
   }
 }
 
+// Issue 20, point 4: a real face on the first start. The ArtiSynth face shipped in cases/ is
+// listed, opens with its Le Fort I and BSSO fragments and its landmarks, and previews a plan.
+TEST(PlanningWorkflow, TheArtisynthFaceIsBuiltIn) {
+  test::ServerProcess server;
+  test::WsTestClient ws(server.port());
+  const json cases = ws.request({{"type", "list_cases"}});
+  json face;
+  for (const json& c : cases["cases"])
+    if (c["id"] == "artisynth-face") face = c;
+  ASSERT_TRUE(face.is_object()) << cases.dump();
+  EXPECT_EQ(face["source"], "artisynth");
+  EXPECT_NE(face["description"].get<std::string>().find("licence"), std::string::npos);
+
+  EXPECT_EQ(ws.request({{"type", "open"}, {"case", "artisynth-face"}})["type"], "opening");
+  const json opened = ws.waitFor("opened", 120s);
+  std::vector<std::string> fragments;
+  for (const json& f : opened["fragments"]) fragments.push_back(f["name"]);
+  EXPECT_EQ(fragments, (std::vector<std::string>{"mandible", "maxilla", "ramus_left", "ramus_right"})) << opened.dump();
+  EXPECT_EQ(opened["coarse"]["tetrahedra"], 37098);
+  std::vector<std::string> landmarks = opened["landmarks"];
+  for (const char* l : {"labrale_superius", "labrale_inferius", "soft_pogonion", "pronasale", "gonion_left"})
+    EXPECT_NE(std::find(landmarks.begin(), landmarks.end(), l), landmarks.end()) << l;
+
+  ws.request(advance(3));
+  const json preview = ws.waitFor("preview", 120s);
+  ASSERT_TRUE(preview["figures"]["converged"].get<bool>()) << preview.dump();
+  const double lip = preview["figures"]["landmarks"]["labrale_superius"]["anterior_mm"];
+  EXPECT_GT(lip, 1.0) << "the upper lip follows the maxilla forward";
+  EXPECT_LT(lip, 4.0);
+  EXPECT_LT(std::abs(preview["figures"]["landmarks"]["soft_pogonion"]["anterior_mm"].get<double>()), 0.5);
+  ws.waitFor([](const json& m) { return m["type"] == "frame"; }, 60s);
+}
+
 TEST(PlanningWorkflow, TwoSessionsAtOnceKeepTheirOwnPoses) {
   test::ServerProcess server;
   test::WsTestClient a(server.port()), b(server.port());

@@ -1,7 +1,6 @@
-// The real ArtiSynth face (../shared/cases/artisynth_face: 37k tetrahedra, node sets for the skull
+// The real ArtiSynth face (cases/artisynth_face, shipped with the project: 37k tetrahedra, node sets for the skull
 // and the mandible) through an explicit scene: a 5 mm mandibular setback converges to a valid
 // state, and the face follows as published soft:hard ratios say (chin about 1:1, nose not at all).
-// Skipped without ../shared.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -18,7 +17,7 @@ namespace fs = std::filesystem;
 namespace orthosim {
 namespace {
 
-const fs::path kFace = fs::path(ORTHOSIM_SHARED_DIR) / "cases" / "artisynth_face";
+const fs::path kFace = fs::path(ORTHOSIM_CASES_DIR) / "artisynth_face";
 
 TEST(RealFace, MandibularSetbackMovesTheChinWithTheBoneAndNotTheNose) {
   SKIP_WITHOUT_SHARED_DATA(kFace / "face_volume.node", kFace / "face_volume.ele", kFace / "attached_to_mandible.txt",
