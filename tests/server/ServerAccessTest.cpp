@@ -110,9 +110,9 @@ TEST(ServerCases, CaseFoldersJoinThePhantom) {
   std::filesystem::copy(dir / "patient-7", dir / "bad name", std::filesystem::copy_options::recursive);
   test::ServerProcess server({"--cases", dir.string()});
   const json cases = json::parse(test::httpGet(server.port(), "/api/cases").body())["cases"];
-  ASSERT_EQ(cases.size(), 6u) << cases.dump();
-  EXPECT_EQ(cases[5]["id"], "patient-7");
-  EXPECT_EQ(cases[5]["source"], "folder");
+  ASSERT_EQ(cases.size(), 7u) << cases.dump();
+  EXPECT_EQ(cases[6]["id"], "patient-7");
+  EXPECT_EQ(cases[6]["source"], "folder");
   test::WsTestClient ws(server.port());
   ws.request({{"type", "open"}, {"case", "patient-7"}});
   const json opened = ws.waitFor("opened", std::chrono::seconds(120));

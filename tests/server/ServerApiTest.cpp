@@ -25,12 +25,14 @@ TEST(ServerApi, HealthIsOk) {
   EXPECT_EQ(httpGet(server.port(), "/api/health?probe=1").result(), http::status::ok);  // query ignored
 }
 
-TEST(ServerApi, CasesListsThePhantomVariants) {
+TEST(ServerApi, CasesListsThePhantomVariantsAndTheRealFace) {
   test::ServerProcess server;
   const test::HttpReply reply = httpGet(server.port(), "/api/cases");
   ASSERT_EQ(reply.result(), http::status::ok);
   const nlohmann::json cases = nlohmann::json::parse(reply.body())["cases"];
-  ASSERT_EQ(cases.size(), 5u);
+  ASSERT_EQ(cases.size(), 6u);
+  EXPECT_EQ(cases[5]["id"], "artisynth-face");
+  EXPECT_EQ(cases[5]["source"], "artisynth");
   const char* names[] = {"class-I", "class-II", "class-III", "asymmetric", "long-face"};
   for (int i = 0; i < 5; ++i) {
     EXPECT_EQ(cases[i]["id"], "phantom-" + std::to_string(i));
@@ -78,7 +80,7 @@ TEST(ServerApi, KeepAliveServesSeveralRequestsOnOneConnection) {
   ASSERT_EQ(replies.size(), 3u);
   EXPECT_TRUE(replies[0].keep_alive());
   EXPECT_EQ(nlohmann::json::parse(replies[1].body())["status"], "ok");
-  EXPECT_EQ(nlohmann::json::parse(replies[2].body())["cases"].size(), 5u);
+  EXPECT_EQ(nlohmann::json::parse(replies[2].body())["cases"].size(), 6u);
 }
 
 }  // namespace
