@@ -111,6 +111,25 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.01, 1000.0));
   compare->add_option("--json", compareOptions.jsonPath, "Also write the figures to this JSON file");
 
+  orthosim::CaseImportInput importInput;
+  std::string importOut, importCuts;
+  auto* import = app.add_subcommand("import", "Make a case from a patient's segmented surfaces (STL, OBJ, PLY)");
+  import->add_option("--skin", importInput.skin, "Closed skin (soft-tissue envelope) surface")->required();
+  import->add_option("--skull", importInput.skull, "Skull with the maxilla (held fixed)")->required();
+  import->add_option("--mandible", importInput.mandible, "Mandible")->required();
+  import->add_option("--cavity", importInput.cavities, "Closed air cavity inside the skin (repeatable)");
+  import->add_option("--texture", importInput.texture, "Image for the skin's texture coordinates");
+  import->add_option("--landmarks", importInput.landmarks, "JSON file of landmarks {name: [x, y, z]}");
+  import->add_option("--cuts", importCuts, "Osteotomy templates, comma-separated (e.g. le_fort_1,bsso)");
+  import->add_option("--units", importInput.units, "Units of the files: auto (mm; refuses metre-sized data), mm, m")
+      ->check(CLI::IsMember({"auto", "mm", "m"}));
+  import->add_option("--name", importInput.name, "Name of the case (default: the folder's)");
+  std::vector<double> importAnterior, importSuperior;
+  import->add_option("--anterior", importAnterior, "Anterior direction of the files' axes (default -1 0 0)")
+      ->expected(3);
+  import->add_option("--superior", importSuperior, "Superior direction (default 0 0 1)")->expected(3);
+  import->add_option("--out", importOut, "Case folder to write (must not exist)")->required();
+
   orthosim::cli::ServeOptions serveOptions;
   serveOptions.webDir = ORTHOSIM_WEB_DIR;
   serveOptions.builtinDir = ORTHOSIM_CASES_DIR;
@@ -164,6 +183,18 @@ int main(int argc, char** argv) {
     if (*demo) return orthosim::cli::runDemo(demoOut);
     if (bench.chosen()) return bench.run();
     if (*phantom) return orthosim::cli::runPhantom(phantomVariant, phantomOut);
+    if (*import) {
+      for (std::size_t at = 0; at < importCuts.size();) {
+        const std::size_t comma = std::min(importCuts.find(',', at), importCuts.size());
+        if (comma > at) importInput.cuts.push_back(importCuts.substr(at, comma - at));
+        at = comma + 1;
+      }
+      if (importAnterior.size() == 3)
+        importInput.anterior = Eigen::Vector3d(importAnterior[0], importAnterior[1], importAnterior[2]);
+      if (importSuperior.size() == 3)
+        importInput.superior = Eigen::Vector3d(importSuperior[0], importSuperior[1], importSuperior[2]);
+      return orthosim::cli::runImport(importInput, importOut);
+    }
     if (*serve) return orthosim::cli::runServe(serveOptions);
     if (*render) {
       renderOptions.resolution = renderResolution == "fine" ? orthosim::Resolution::Fine : orthosim::Resolution::Coarse;

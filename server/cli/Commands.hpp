@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "scene/CaseFile.hpp"
+#include "scene/CaseImport.hpp"
 
 namespace orthosim::cli {
 
@@ -105,6 +106,9 @@ int runCohortBench(const CohortBenchOptions& options);
 
 // Writes the built-in phantom head (variant N) as a surface-based case under outDir.
 int runPhantom(int variant, const std::string& outDir);
+
+// Writes the imported case; 0 when written, 1 with the file and defect named on stderr otherwise.
+int runImport(const CaseImportInput& input, const std::string& outDir);
 
 struct CompareOptions {
   std::string predicted;         // surface file (.stl, .obj, .ply): the predicted skin

@@ -1,0 +1,264 @@
+#include "scene/CaseImport.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "mesh/PointsInside.hpp"
+#include "mesh/SurfaceCheck.hpp"
+#include "mesh/SurfaceDistance.hpp"
+#include "mesh/SurfaceImport.hpp"
+#include "scene/CaseFile.hpp"
+#include "scene/LandmarkFrame.hpp"
+#include "scene/Osteotomy.hpp"
+
+namespace orthosim {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A bone may touch the skin (a thin chin), not pass through it.
+constexpr double kOutsideTolerance = 0.5;  // mm
+
+std::string where(const Eigen::Vector3d& p, int digits = 1) {
+  std::ostringstream o;
+  o.precision(digits);
+  o << std::fixed << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return o.str();
+}
+
+double scaleFor(const std::string& units, const SurfaceMesh& skin, const std::string& skinPath) {
+  if (units == "mm") return 1.0;
+  if (units == "m") return 1000.0;
+  if (units != "auto") throw CaseImportError("units: '" + units + "' is not one of auto, mm, m");
+  const double extent = (skin.vertices.rowwise().maxCoeff() - skin.vertices.rowwise().minCoeff()).maxCoeff();
+  if (extent < 1.0)  // a head is 150-300 mm across
+    throw CaseImportError(skinPath + ": it is " + std::to_string(extent) +
+                          " units across, which looks like metres: pass units m to scale by 1000 (or units mm "
+                          "if it really is millimetres)");
+  return 1.0;
+}
+
+SurfaceMesh readChecked(const std::string& path, double scale, SurfaceRequirement requirement,
+                        std::vector<std::string>& warnings) {
+  SurfaceMesh mesh;
+  try {
+    mesh = importSurface(path);
+  } catch (const std::exception& e) {
+    throw CaseImportError(e.what());
+  }
+  mesh.vertices *= scale;
+  try {
+    const SurfaceReport report = checkSurface(mesh, path, requirement);
+    warnings.insert(warnings.end(), report.warnings.begin(), report.warnings.end());
+    if (!report.unitSuspicion.empty()) throw CaseImportError(path + ": " + report.unitSuspicion);
+  } catch (const CaseImportError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw CaseImportError(e.what());
+  }
+  return mesh;
+}
+
+// Every vertex of `inner` inside `skin`, or within kOutsideTolerance of it.
+void requireInside(const SurfaceMesh& skin, const SurfaceMesh& inner, const std::string& path) {
+  const std::vector<bool> inside = pointsInside(skin, inner.vertices);
+  std::vector<int> out;
+  for (int i = 0; i < inner.numVertices(); ++i)
+    if (!inside[i]) out.push_back(i);
+  if (out.empty()) return;
+  Eigen::Matrix3Xd p(3, out.size());
+  for (size_t k = 0; k < out.size(); ++k) p.col(k) = inner.vertices.col(out[k]);
+  const Eigen::VectorXd d = distancesToSurface(skin.vertices, skin.triangles, p);
+  Eigen::Index worst = 0;
+  const double farthest = d.maxCoeff(&worst);
+  if (farthest <= kOutsideTolerance) return;
+  const long count = (d.array() > kOutsideTolerance).count();
+  std::ostringstream o;
+  o.precision(1);
+  o << std::fixed << path << ": " << count << " of " << inner.numVertices() << " vertices lie outside the skin (up to "
+    << farthest << " mm, e.g. at " << where(p.col(worst))
+    << "): is it the right file, in the same frame and units as the skin?";
+  throw CaseImportError(o.str());
+}
+
+// A cavity may open through the skin (the mouth slit: the phantom's oral cavity ends in front of
+// the lips), but one wholly outside it is the wrong file or frame.
+void requirePartlyInside(const SurfaceMesh& skin, const SurfaceMesh& cavity, const std::string& path) {
+  const std::vector<bool> inside = pointsInside(skin, cavity.vertices);
+  if (std::find(inside.begin(), inside.end(), true) == inside.end())
+    throw CaseImportError(path +
+                          ": the cavity lies wholly outside the skin: is it the right file, in the same "
+                          "frame and units as the skin?");
+}
+
+json readLandmarks(const std::string& path, double scale) {
+  std::ifstream in(path);
+  if (!in) throw CaseImportError(path + ": cannot read the landmarks file");
+  json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    throw CaseImportError(path + ": not JSON: " + e.what());
+  }
+  const auto scaled = [&](json group, const std::string& at) {
+    if (!group.is_object()) throw CaseImportError(path + at + ": must be an object of name: [x, y, z]");
+    for (auto& [name, p] : group.items()) {
+      if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() || !p[2].is_number())
+        throw CaseImportError(path + at + "." + name + ": must be [x, y, z]");
+      for (auto& c : p) c = c.get<double>() * scale;
+    }
+    return group;
+  };
+  if (j.is_object() && (j.contains("hard") || j.contains("soft"))) {
+    for (const char* g : {"hard", "soft"})
+      if (j.contains(g)) j[g] = scaled(j[g], std::string(": ") + g);
+    return j;
+  }
+  return scaled(j, "");
+}
+
+json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+Landmarks flatten(const json& j) {
+  Landmarks out;
+  const auto add = [&](const json& group) {
+    for (const auto& [name, p] : group.items()) out[name] = Eigen::Vector3d(p[0], p[1], p[2]);
+  };
+  if (j.contains("hard") || j.contains("soft")) {
+    for (const char* g : {"hard", "soft"})
+      if (j.contains(g)) add(j[g]);
+  } else {
+    add(j);
+  }
+  return out;
+}
+
+json caseJson(const CaseImportInput& in, const std::string& name, const json& cavities, bool landmarks,
+              const std::optional<AnatomicalFrame>& fromLandmarks) {
+  json tissue = {{"skin", "skin.obj"}};
+  if (!cavities.empty()) tissue["cavities"] = cavities;
+  if (!in.texture.empty()) tissue["texture"] = "texture" + fs::path(in.texture).extension().string();
+  json cuts = json::array();
+  for (const std::string& kind : in.cuts) cuts.push_back({{"template", kind}, {"bone", boneOfTemplate(kind)}});
+  json c = {{"units", "mm"},
+            {"name", name},
+            {"tissue", tissue},
+            {"bones",
+             {{{"name", "skull"}, {"surface", "skull.stl"}, {"fixed", true}},
+              {{"name", "mandible"}, {"surface", "mandible.stl"}}}},
+            {"cuts", cuts},
+            // Lips and cheeks slide on the teeth and bone of both jaws.
+            {"contact", {{{"bones", {"mandible", "skull"}}, {"range_mm", 15}}}}};
+  if (landmarks) c["landmarks"] = "landmarks.json";
+  if (fromLandmarks && !in.anterior && !in.superior) {
+    c["frame"] = {{"anterior", vec(fromLandmarks->anterior)},
+                  {"superior", vec(fromLandmarks->superior)},
+                  {"right", vec(fromLandmarks->right)}};
+  } else if (in.anterior || in.superior) {
+    const AnatomicalFrame defaults;
+    const Eigen::Vector3d a = in.anterior.value_or(defaults.anterior).normalized();
+    const Eigen::Vector3d s = in.superior.value_or(defaults.superior).normalized();
+    if (std::abs(a.dot(s)) > 1e-6)
+      throw CaseImportError("frame: anterior " + where(a) + " and superior " + where(s) + " must be orthogonal");
+    c["frame"] = {{"anterior", vec(a)}, {"superior", vec(s)}, {"right", vec(a.cross(s))}};
+  }
+  return c;
+}
+
+void writeFolder(const CaseImportInput& in, const fs::path& dir, double scale, CaseImportReport& report) {
+  const SurfaceMesh skin = readChecked(in.skin, scale, SurfaceRequirement::Closed, report.warnings);
+  const SurfaceMesh skull = readChecked(in.skull, scale, SurfaceRequirement::OpenAllowed, report.warnings);
+  const SurfaceMesh mandible = readChecked(in.mandible, scale, SurfaceRequirement::OpenAllowed, report.warnings);
+  requireInside(skin, skull, in.skull);
+  requireInside(skin, mandible, in.mandible);
+  json cavities = json::array();
+  for (size_t k = 0; k < in.cavities.size(); ++k) {
+    const SurfaceMesh cavity = readChecked(in.cavities[k], scale, SurfaceRequirement::Closed, report.warnings);
+    requirePartlyInside(skin, cavity, in.cavities[k]);
+    const std::string file = "cavity_" + std::to_string(k) + ".stl";
+    exportSurface(cavity, (dir / file).string());
+    cavities.push_back(file);
+  }
+  exportSurface(skin, (dir / "skin.obj").string());  // OBJ keeps the texture coordinates
+  exportSurface(skull, (dir / "skull.stl").string());
+  exportSurface(mandible, (dir / "mandible.stl").string());
+  if (!in.texture.empty()) {
+    std::error_code ec;
+    fs::copy_file(in.texture, dir / ("texture" + fs::path(in.texture).extension().string()), ec);
+    if (ec) throw CaseImportError(in.texture + ": cannot copy the texture: " + ec.message());
+  }
+  std::optional<AnatomicalFrame> frame;
+  if (!in.landmarks.empty()) {
+    const json landmarks = readLandmarks(in.landmarks, scale);
+    std::ofstream(dir / "landmarks.json") << landmarks.dump(2);
+    try {
+      frame = frameFromLandmarks(flatten(landmarks));
+    } catch (const std::invalid_argument& e) {
+      throw CaseImportError(in.landmarks + ": " + e.what());
+    }
+    if (frame && !in.anterior && !in.superior)
+      report.frame = "from the Frankfort horizontal (porions, orbitale): anterior " + where(frame->anterior, 3) +
+                     ", superior " + where(frame->superior, 3);
+  }
+  if (report.frame.empty())
+    report.frame = in.anterior || in.superior ? "as given" : "the files' axes (anterior -x, superior +z)";
+  std::ofstream out(dir / "case.json");
+  out << caseJson(in, in.name, cavities, !in.landmarks.empty(), frame).dump(2) << "\n";
+  out.close();
+  if (!out) throw CaseImportError((dir / "case.json").string() + ": cannot write the case file");
+  try {
+    loadCaseFile((dir / "case.json").string());
+  } catch (const std::exception& e) {
+    throw CaseImportError(std::string("the imported case does not load: ") + e.what());
+  }
+}
+
+}  // namespace
+
+std::string boneOfTemplate(const std::string& kind) {
+  const std::vector<std::string>& known = osteotomyTemplates();
+  if (std::find(known.begin(), known.end(), kind) == known.end()) {
+    std::string list;
+    for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+    throw CaseImportError("cuts: unknown osteotomy template '" + kind + "' (templates: " + list + ")");
+  }
+  return kind == "le_fort_1" || kind == "le_fort_2" || kind == "segmented_maxilla" ? "skull" : "mandible";
+}
+
+CaseImportReport importCase(const CaseImportInput& input, const std::string& outDir) {
+  const fs::path out = fs::absolute(outDir);
+  if (fs::exists(out)) throw CaseImportError(out.string() + ": exists already; choose a new folder for the case");
+  for (const std::string& kind : input.cuts) boneOfTemplate(kind);  // unknown templates before any work
+  CaseImportInput named = input;
+  if (named.name.empty()) named.name = out.filename().string();
+  const SurfaceMesh skin = [&] {
+    try {
+      return importSurface(input.skin);
+    } catch (const std::exception& e) {
+      throw CaseImportError(e.what());
+    }
+  }();
+  CaseImportReport report;
+  report.scale = scaleFor(input.units, skin, input.skin);
+  // Written beside its place and renamed into it: a folder with case.json is always complete.
+  const fs::path tmp = out.parent_path() / ("." + out.filename().string() + ".importing-" + std::to_string(::getpid()));
+  fs::remove_all(tmp);
+  fs::create_directories(tmp);
+  try {
+    writeFolder(named, tmp, report.scale, report);
+    fs::rename(tmp, out);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(tmp, ignored);
+    throw;
+  }
+  report.caseFile = (out / "case.json").string();
+  return report;
+}
+
+}  // namespace orthosim

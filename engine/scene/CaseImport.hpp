@@ -1,0 +1,51 @@
+#pragma once
+// A surgeon's own patient as a case (issue 20): the segmented skin, skull (with the maxilla) and
+// mandible exported from 3D Slicer, Mimics or ITK-SNAP as STL, OBJ or PLY, optional air cavities,
+// texture and landmarks, and the osteotomy templates to cut. Every file is checked (units, closed,
+// manifold, self-intersection, bones inside the skin) and every problem comes back naming the file
+// and what is wrong; the case folder is written complete or not at all.
+#include <Eigen/Core>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace orthosim {
+
+struct CaseImportInput {
+  std::string skin;                   // closed envelope of the soft tissue
+  std::string skull;                  // skull with the maxilla: held fixed, cut by the maxilla's templates
+  std::string mandible;               // moved as a whole or cut by the mandible's templates
+  std::vector<std::string> cavities;  // closed air spaces inside the skin (e.g. the oral cavity)
+  std::string texture;                // image for the skin's texture coordinates (optional)
+  std::string landmarks;              // JSON {name: [x, y, z]} (or grouped under hard/soft), same units
+  std::vector<std::string> cuts;      // osteotomy templates: le_fort_1, bsso, genioplasty, ...
+  std::string units = "auto";         // "mm", "m", or "auto": mm, refusing sizes that look like metres
+  std::string name;                   // the case's name (default: the folder's)
+  // The anatomical frame; default: from the landmarks' Frankfort horizontal when they have it
+  // (scene/LandmarkFrame), else the case format's (anterior -x, superior +z).
+  std::optional<Eigen::Vector3d> anterior, superior;
+};
+
+struct CaseImportReport {
+  std::string caseFile;               // <outDir>/case.json
+  double scale = 1.0;                 // applied to every coordinate (1000 for metres)
+  std::string frame;                  // where the anatomical frame came from, for the user
+  std::vector<std::string> warnings;  // repairs made and defects accepted, "<file>: ..."
+};
+
+// Thrown for anything wrong with the input; the message names the file (or option) and the defect.
+struct CaseImportError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Writes the case into `outDir`, which must not exist: the surfaces in mm (skin.obj, skull.stl,
+// mandible.stl, cavity_<k>.stl), the texture, landmarks.json and case.json, which is then loaded
+// as a check. On any failure nothing is left behind.
+CaseImportReport importCase(const CaseImportInput& input, const std::string& outDir);
+
+// The bone a template cuts: the skull for the maxilla's (le_fort_1, le_fort_2, segmented_maxilla),
+// the mandible for the others. Throws CaseImportError for an unknown template.
+std::string boneOfTemplate(const std::string& kind);
+
+}  // namespace orthosim

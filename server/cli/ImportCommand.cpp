@@ -1,0 +1,26 @@
+// `orthosim import --skin S --skull K --mandible M [--cavity C]... [--texture T] [--landmarks L]
+// [--cuts le_fort_1,bsso] [--units auto|mm|m] [--name N] --out DIR`: a patient's segmented surfaces
+// as a case folder (scene/CaseImport), checked file by file.
+#include <iostream>
+
+#include "cli/Commands.hpp"
+#include "scene/CaseImport.hpp"
+
+namespace orthosim::cli {
+
+int runImport(const CaseImportInput& input, const std::string& outDir) {
+  try {
+    const CaseImportReport report = importCase(input, outDir);
+    for (const std::string& w : report.warnings) std::cout << "warning: " << w << "\n";
+    if (report.scale != 1.0) std::cout << "coordinates scaled by " << report.scale << " to millimetres\n";
+    std::cout << "anatomical frame: " << report.frame << "\n";
+    std::cout << "case written to " << report.caseFile << "; serve it with `orthosim serve --cases <its parent>`"
+              << " or solve it with `orthosim solve " << report.caseFile << " --out DIR`\n";
+    return 0;
+  } catch (const CaseImportError& e) {
+    std::cerr << "orthosim: import: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace orthosim::cli
