@@ -290,6 +290,36 @@ TEST_F(PhantomCase, ContactStopsAtTheDepthOfLipsAndCheeks) {
   EXPECT_GT(limited, deep) << "lips and cheeks keep most of the contact";
 }
 
+// Issue 21, A.1: with the bones' motion prescribed and no body force, the equilibrium does not
+// depend on Young's modulus: the tissue energy and the default contact penalty (20 E h) both scale
+// with E. So a prediction band must come from the parameters that change the answer (Poisson's
+// ratio, blend width, contact stiffness relative to E, ...), not from E. A contact stiffness fixed
+// in N/mm breaks the invariance, which is what the test would see if the penalty stopped scaling.
+TEST_F(PhantomCase, TheFaceDoesNotDependOnYoungsModulus) {
+  Scene scene = coarse().scene;
+  scene.plan.clear();
+  scene.plan["mandible"].translation = 6.0 * -spec().frame.anterior;  // with lips on the teeth
+  const auto solve = [](Scene s, double e, double fixedStiffness) {
+    s.youngsModulus = e;
+    for (ContactSpec& c : s.contacts) c.stiffness = fixedStiffness;
+    Model model(s);
+    const SolveResult r = solveScene(model);
+    EXPECT_TRUE(r.converged) << r.error;
+    return r.state.x;
+  };
+  const Eigen::Matrix3Xd soft = solve(scene, 0.1, 0), stiff = solve(scene, 0.5, 0);
+  const double apart = (soft - stiff).colwise().norm().maxCoeff();
+  const double moved = (soft - scene.mesh.rest).colwise().norm().maxCoeff();
+  std::cout << "E 100 vs 500 kPa: nodes at most " << apart << " mm apart (moved up to " << moved << " mm)\n";
+  EXPECT_GT(moved, 5.0);
+  EXPECT_LT(apart, 1e-3);
+  // The penalty held at the soft tissue's default stiffness while E grows fivefold.
+  const double k = kDefaultContactFactor * 0.1 * scene.mesh.meanEdgeLength();
+  const Eigen::Matrix3Xd fixedK = solve(scene, 0.5, k);
+  EXPECT_GT((soft - fixedK).colwise().norm().maxCoeff(), 10 * std::max(apart, 1e-4))
+      << "a stiffness that does not scale with E changes the answer where lips press on teeth";
+}
+
 // Issue 18, point 2: on a 10 mm setback with the lips-teeth contact, the coarse preview puts the
 // lower and upper lip and the soft chin within 1 mm of the fine confirm. Before the mouth slit's
 // flat walls were split into short edges (mesh/LongEdgeSplit) the fine mesh kept them as a few
