@@ -284,14 +284,7 @@ json PlanningSession::caseJson(const OpenCase& c) const {
                          {"pivot_mm", vec(f.pivot)},
                          {"pose", poseToJson(it == poses_.end() ? AnatomicalPose{} : it->second)}});
   }
-  json cuts = json::array();
-  for (const OsteotomySpec& cut : m.spec.cuts) {
-    json j = {{"kind", cut.kind}, {"bone", cut.bone}};
-    if (!cut.side.empty()) j["side"] = cut.side;
-    if (!cut.fragment.empty()) j["fragment"] = cut.fragment;
-    if (cut.offset >= 0) j["offset_mm"] = cut.offset;
-    cuts.push_back(std::move(j));
-  }
+  json cuts = osteotomySetJson(m.spec.cuts);
   json landmarks = json::array();
   for (const auto& [name, p] : m.spec.landmarks) landmarks.push_back(name);
   const AnatomicalFrame& f = m.spec.frame;
@@ -641,7 +634,8 @@ void PlanningSession::savePlan(MessageReader& r, const json& id) {
     poses = posesJson();
     current = poses_;
   }
-  service_.plans().save(c->id, name, savedPlanJson(c->id, name, poses, c->plan(current)));
+  service_.plans().save(c->id, name,
+                        savedPlanJson(c->id, name, poses, c->plan(current), osteotomySetJson(c->coarse->spec.cuts)));
   reply({{"type", "saved"}, {"case", c->id}, {"name", name}}, id);
 }
 
@@ -650,8 +644,9 @@ void PlanningSession::loadPlan(MessageReader& r, const json& id) {
   const std::string name = r.string("name");
   const bool previewAfter = r.boolean("preview", true);
   r.rejectUnknown();
-  const Poses loaded = readSavedPlan(service_.plans().load(c->id, name), name,
-                                     [&](MessageReader poses) { return readPoses(poses, *c); });
+  const Poses loaded = readSavedPlan(
+      service_.plans().load(c->id, name), name, [&](MessageReader poses) { return readPoses(poses, *c); },
+      osteotomySetJson(c->coarse->spec.cuts));
   json poses;
   {
     const std::lock_guard<std::mutex> lock(mutex_);

@@ -6,21 +6,30 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
+#include "scene/Osteotomy.hpp"
 #include "scene/RigidPose.hpp"
 #include "session/AnatomicalPose.hpp"
 #include "session/MessageReader.hpp"
 
 namespace orthosim::server {
 
-// `poses`: {fragment: pose} as poseToJson writes it; `plan`: the same poses as world motions.
+// The osteotomy set a plan is made on, as `opened` lists a case's cuts: [{kind, bone, side?,
+// fragment?, offset_mm?, planes?}] in the case's order.
+nlohmann::json osteotomySetJson(const std::vector<OsteotomySpec>& cuts);
+
+// `poses`: {fragment: pose} as poseToJson writes it; `plan`: the same poses as world motions;
+// `cuts`: the osteotomy set they were made on (osteotomySetJson).
 nlohmann::json savedPlanJson(const std::string& caseId, const std::string& name, const nlohmann::json& poses,
-                             const std::map<std::string, FragmentMotion>& plan);
+                             const std::map<std::string, FragmentMotion>& plan, const nlohmann::json& cuts);
 
 // Reads the poses of saved plan `name` with `readPoses` (which checks them against the open case).
-// Throws ProtocolError bad_plan, naming the plan, for an unknown format or a bad field.
+// Throws ProtocolError bad_plan, naming the plan, for an unknown format or a bad field, and
+// other_osteotomies when the plan was made on another osteotomy set than `cuts` (its poses would
+// move other bone). Plans saved before they named their set load as before.
 using PoseReader = std::function<std::map<std::string, AnatomicalPose>(MessageReader poses)>;
 std::map<std::string, AnatomicalPose> readSavedPlan(const nlohmann::json& plan, const std::string& name,
-                                                    const PoseReader& readPoses);
+                                                    const PoseReader& readPoses, const nlohmann::json& cuts);
 
 }  // namespace orthosim::server
