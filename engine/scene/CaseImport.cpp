@@ -43,14 +43,17 @@ double scaleFor(const std::string& units, const SurfaceMesh& skin, const std::st
   return 1.0;
 }
 
-SurfaceMesh readChecked(const std::string& path, double scale, SurfaceRequirement requirement,
-                        std::vector<std::string>& warnings) {
-  SurfaceMesh mesh;
+SurfaceMesh readSurface(const std::string& path) {
   try {
-    mesh = importSurface(path);
+    return importSurface(path);
   } catch (const std::exception& e) {
     throw CaseImportError(e.what());
   }
+}
+
+// `mesh` as read from `path`, scaled to mm and checked (repairs listed in `warnings`).
+SurfaceMesh checked(SurfaceMesh mesh, const std::string& path, double scale, SurfaceRequirement requirement,
+                    std::vector<std::string>& warnings) {
   mesh.vertices *= scale;
   try {
     const SurfaceReport report = checkSurface(mesh, path, requirement);
@@ -65,8 +68,9 @@ SurfaceMesh readChecked(const std::string& path, double scale, SurfaceRequiremen
 }
 
 // Every vertex of `inner` inside `skin`, or within kOutsideTolerance of it.
-void requireInside(const SurfaceMesh& skin, const SurfaceMesh& inner, const std::string& path) {
-  const std::vector<bool> inside = pointsInside(skin, inner.vertices);
+void requireInside(const SurfaceMesh& skin, const PointsInside& inSkin, const SurfaceMesh& inner,
+                   const std::string& path) {
+  const std::vector<bool> inside = inSkin(inner.vertices);
   std::vector<int> out;
   for (int i = 0; i < inner.numVertices(); ++i)
     if (!inside[i]) out.push_back(i);
@@ -88,8 +92,8 @@ void requireInside(const SurfaceMesh& skin, const SurfaceMesh& inner, const std:
 
 // A cavity may open through the skin (the mouth slit: the phantom's oral cavity ends in front of
 // the lips), but one wholly outside it is the wrong file or frame.
-void requirePartlyInside(const SurfaceMesh& skin, const SurfaceMesh& cavity, const std::string& path) {
-  const std::vector<bool> inside = pointsInside(skin, cavity.vertices);
+void requirePartlyInside(const PointsInside& inSkin, const SurfaceMesh& cavity, const std::string& path) {
+  const std::vector<bool> inside = inSkin(cavity.vertices);
   if (std::find(inside.begin(), inside.end(), true) == inside.end())
     throw CaseImportError(path +
                           ": the cavity lies wholly outside the skin: is it the right file, in the same "
@@ -170,16 +174,21 @@ json caseJson(const CaseImportInput& in, const std::string& name, const json& ca
   return c;
 }
 
-void writeFolder(const CaseImportInput& in, const fs::path& dir, double scale, CaseImportReport& report) {
-  const SurfaceMesh skin = readChecked(in.skin, scale, SurfaceRequirement::Closed, report.warnings);
-  const SurfaceMesh skull = readChecked(in.skull, scale, SurfaceRequirement::OpenAllowed, report.warnings);
-  const SurfaceMesh mandible = readChecked(in.mandible, scale, SurfaceRequirement::OpenAllowed, report.warnings);
-  requireInside(skin, skull, in.skull);
-  requireInside(skin, mandible, in.mandible);
+void writeFolder(const CaseImportInput& in, SurfaceMesh skinAsRead, const fs::path& dir, double scale,
+                 CaseImportReport& report) {
+  std::vector<std::string>& w = report.warnings;
+  const SurfaceMesh skin = checked(std::move(skinAsRead), in.skin, scale, SurfaceRequirement::Closed, w);
+  const SurfaceMesh skull = checked(readSurface(in.skull), in.skull, scale, SurfaceRequirement::OpenAllowed, w);
+  const SurfaceMesh mandible =
+      checked(readSurface(in.mandible), in.mandible, scale, SurfaceRequirement::OpenAllowed, w);
+  const PointsInside inSkin(skin);
+  requireInside(skin, inSkin, skull, in.skull);
+  requireInside(skin, inSkin, mandible, in.mandible);
   json cavities = json::array();
   for (size_t k = 0; k < in.cavities.size(); ++k) {
-    const SurfaceMesh cavity = readChecked(in.cavities[k], scale, SurfaceRequirement::Closed, report.warnings);
-    requirePartlyInside(skin, cavity, in.cavities[k]);
+    const SurfaceMesh cavity =
+        checked(readSurface(in.cavities[k]), in.cavities[k], scale, SurfaceRequirement::Closed, w);
+    requirePartlyInside(inSkin, cavity, in.cavities[k]);
     const std::string file = "cavity_" + std::to_string(k) + ".stl";
     exportSurface(cavity, (dir / file).string());
     cavities.push_back(file);
@@ -236,13 +245,7 @@ CaseImportReport importCase(const CaseImportInput& input, const std::string& out
   for (const std::string& kind : input.cuts) boneOfTemplate(kind);  // unknown templates before any work
   CaseImportInput named = input;
   if (named.name.empty()) named.name = out.filename().string();
-  const SurfaceMesh skin = [&] {
-    try {
-      return importSurface(input.skin);
-    } catch (const std::exception& e) {
-      throw CaseImportError(e.what());
-    }
-  }();
+  SurfaceMesh skin = readSurface(input.skin);  // read once: its size tells the units
   CaseImportReport report;
   report.scale = scaleFor(input.units, skin, input.skin);
   // Written beside its place and renamed into it: a folder with case.json is always complete.
@@ -250,7 +253,7 @@ CaseImportReport importCase(const CaseImportInput& input, const std::string& out
   fs::remove_all(tmp);
   fs::create_directories(tmp);
   try {
-    writeFolder(named, tmp, report.scale, report);
+    writeFolder(named, std::move(skin), tmp, report.scale, report);
     fs::rename(tmp, out);
   } catch (...) {
     std::error_code ignored;

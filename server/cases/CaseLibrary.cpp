@@ -24,7 +24,7 @@ const CaseEntry* CaseLibrary::find(const std::string& id) const {
 // The shipped face's case file names the shipped files in place (never copied); written into the
 // data folder and rewritten whenever it differs, e.g. after the shipped folder moved.
 std::string CaseLibrary::artisynthCaseFile(const CaseEntry& entry) {
-  const std::lock_guard<std::mutex> lock(phantomMutex_);
+  const std::lock_guard<std::mutex> lock(writeMutex_);
   const fs::path dir = dataDir_ / "cases" / entry.id;
   const fs::path file = dir / "case.json";
   const std::string text = realFaceCaseJson(fs::absolute(entry.folder), nlohmann::json::object()).dump(2) + "\n";
@@ -53,7 +53,7 @@ std::string CaseLibrary::caseFile(const CaseEntry& entry) {
   if (entry.source == "artisynth") return artisynthCaseFile(entry);
   if (entry.source != "phantom") return entry.caseFile.string();
   // Written once per data folder; the phantom is deterministic, so an existing one is reused.
-  const std::lock_guard<std::mutex> lock(phantomMutex_);
+  const std::lock_guard<std::mutex> lock(writeMutex_);
   const fs::path dir = dataDir_ / "cases" / entry.id;
   const fs::path file = dir / "case.json";
   if (fs::is_regular_file(file)) return file.string();

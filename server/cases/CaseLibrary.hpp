@@ -47,7 +47,7 @@ class CaseLibrary {
   std::vector<CaseEntry> catalog_;
   std::filesystem::path dataDir_;
   mutable std::mutex mutex_;
-  std::mutex phantomMutex_;  // writing a built-in case's files
+  std::mutex writeMutex_;  // writing a built-in case's files
   std::map<std::pair<std::string, Resolution>, std::shared_future<std::shared_ptr<const CaseModel>>> models_;
   std::map<std::string, std::shared_future<std::shared_ptr<const Model>>> prototypes_;
 };
