@@ -16,6 +16,11 @@ constexpr size_t kStallWindow = 8;  // iterations
 // untangling, is shortened instead.
 constexpr size_t kUntangleMaxElements = 16;
 constexpr int kUntangleRounds = 3;
+// A full step that turns elements over is cut to kBelowFeasible of the largest fraction that
+// keeps them all positive, found to 2^-kFeasibleBisections (a step at the boundary would start
+// next to a singular element). Halving instead cost the fine setback 4 of its 13 iterations.
+constexpr double kBelowFeasible = 0.9;
+constexpr int kFeasibleBisections = 6;
 // A prediction shorter than this many mean edge lengths starts Newton with a chord step (0.2 and
 // 0.5 mm drag steps on the coarse phantom: one chord step, 0.02-0.03 s; a 5 mm one overshoots).
 constexpr double kChordFirstStep = 0.25;
@@ -239,7 +244,8 @@ class Newton {
   }
 
   // Backtracking (Armijo) on the total energy; a trial with an inverted element has infinite
-  // energy and is never accepted. Returns the step taken, 0 when none decreases the energy.
+  // energy and is never accepted (a full step that inverts some is cut to just below the largest
+  // valid fraction first). Returns the step taken, 0 when none decreases the energy.
   double lineSearch(SimState& x, const Eigen::VectorXd& r, const Eigen::VectorXd& dz, double residual) {
     Stopwatch w{t_.lineSearch};
     const double e0 = model_.totalEnergy(x);
@@ -249,11 +255,14 @@ class Newton {
     // error scales with the terms summed, not with the energy: near a rigid motion the energy is
     // close to 0 while each element still adds and cancels terms of size mu V.
     const double roundoff = 1e-12 * std::max(std::abs(e0), model_.energy().roundingScale());
-    for (double alpha = 1.0; alpha > 1e-10; alpha *= 0.5) {
+    for (double alpha = 1.0; alpha > 1e-10;) {
       SimState trial = x;
       coupling_.step(dz, alpha, trial);
       const double e = model_.totalEnergy(trial);
-      if (!std::isfinite(e)) continue;
+      if (!std::isfinite(e)) {
+        alpha = alpha == 1.0 ? feasibleFraction(x, dz) : 0.5 * alpha;
+        continue;
+      }
       LineSearchTrial t{e0, e, alpha, slope, roundoff, residual, model_.forceTolerance()};
       if (!lineSearchAccepts(t) && lineSearchNeedsTrialResidual(t)) {
         t.trialResidual = coupling_.forceNorm(coupling_.reduce(model_.totalGradient(trial), trial));
@@ -262,8 +271,25 @@ class Newton {
         x = std::move(trial);
         return alpha;
       }
+      alpha *= 0.5;
     }
     return 0.0;
+  }
+
+  // Where the full step turns elements over, the fraction the line search tries next: 0.9 of the
+  // largest that keeps every element's volume positive (to 1/64), else half the step.
+  double feasibleFraction(const SimState& x, const Eigen::VectorXd& dz) const {
+    const SoftTissueEnergy& energy = model_.energy();
+    const double largest = largestValidFraction(
+        [&](double alpha) {
+          SimState trial = x;
+          coupling_.step(dz, alpha, trial);
+          for (int e : energy.activeElements())
+            if (energy.deformationGradient(e, trial.x).determinant() <= 0) return false;
+          return true;
+        },
+        kFeasibleBisections);
+    return largest > 0 ? kBelowFeasible * largest : 0.5;
   }
 
   Model& model_;
@@ -285,6 +311,15 @@ bool lineSearchAccepts(const LineSearchTrial& t) {
   if (!(-t.slope < t.roundoff)) return false;
   if (t.residual <= kRoundoffEscapeResidual * t.forceTolerance) return true;
   return t.alpha == 1.0 && t.trialResidual <= 0.5 * t.residual;  // false for NaN (not evaluated)
+}
+
+double largestValidFraction(const std::function<bool(double)>& valid, int bisections) {
+  double lo = 0, hi = 1;
+  for (int k = 0; k < bisections; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (valid(mid) ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 bool lineSearchNeedsTrialResidual(const LineSearchTrial& t) {

@@ -6,6 +6,7 @@
 #include "solver/SolveControl.hpp"
 #include "solver/SolveResult.hpp"
 
+#include <functional>
 #include <limits>
 
 namespace orthosim {
@@ -43,5 +44,11 @@ bool lineSearchAccepts(const LineSearchTrial& t);
 // Whether lineSearchAccepts can use t.trialResidual for this trial (a full step whose predicted
 // decrease is below rounding): the line search evaluates it only then.
 bool lineSearchNeedsTrialResidual(const LineSearchTrial& t);
+
+// The largest step fraction in [0, 1) that `valid` accepts, found by `bisections` halvings of
+// [0, 1] (so within 2^-bisections below the boundary when validity is one interval [0, a*)); 0
+// when no bisection point is valid. The line search starts a little below it when the full Newton
+// step turns elements over: the step is then mostly good, and halving it wastes half.
+double largestValidFraction(const std::function<bool(double)>& valid, int bisections);
 
 }  // namespace orthosim

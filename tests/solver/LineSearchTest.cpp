@@ -107,5 +107,24 @@ TEST(LineSearch, ArmijoDecidesAwayFromRounding) {
   EXPECT_FALSE(lineSearchAccepts(t));
 }
 
+// det(I + a G) with G = diag(-1.5, 0.3, 0): the element turns over at a = 2/3 and stays positive
+// below it. Six bisections find the boundary to 1/64 from below.
+TEST(LineSearch, LargestValidFractionBracketsWhereAnElementTurnsOver) {
+  auto positive = [](double a) { return (1 - 1.5 * a) * (1 + 0.3 * a) > 0; };
+  const double a = largestValidFraction(positive, 6);
+  EXPECT_TRUE(positive(a));
+  EXPECT_LT(a, 2.0 / 3);
+  EXPECT_GE(a, 2.0 / 3 - 1.0 / 64);
+  const double finer = largestValidFraction(positive, 20);
+  EXPECT_NEAR(finer, 2.0 / 3, 1e-6);
+  EXPECT_LT(finer, 2.0 / 3);
+}
+
+TEST(LineSearch, LargestValidFractionIsZeroWhenNoStepIsValid) {
+  EXPECT_EQ(largestValidFraction([](double) { return false; }, 6), 0.0);
+  // Every point valid: the last point below 1 (the full step is the caller's own trial).
+  EXPECT_DOUBLE_EQ(largestValidFraction([](double) { return true; }, 6), 1.0 - 1.0 / 64);
+}
+
 }  // namespace
 }  // namespace orthosim
