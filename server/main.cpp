@@ -167,6 +167,8 @@ int main(int argc, char** argv) {
                    "Seconds a session may stay without opening a case before it is closed")
       ->check(CLI::Range(1, 86400));
   serve->add_flag("!--no-warm-up", serveOptions.warmUp, "Do not build the phantom's coarse model at start");
+  serve->add_option("--max-upload-mb", serveOptions.maxUploadMb, "Largest patient upload (POST /api/patients), MiB")
+      ->check(CLI::Range(1, 4096));
 
   try {
     app.parse(argc, argv);

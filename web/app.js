@@ -22,7 +22,7 @@ const $ = (id) => document.getElementById(id);
 const state = {
   ws: null, caseId: null, fragments: [], poses: {}, limits: { translation_mm: 30, rotation_deg: 30 },
   posesDirty: false, sendTimer: null, lastSend: -Infinity, job: null, nextId: 1, viewInFlight: false,
-  pendingView: null, lastFrameUrl: null, frameTimes: [], lastSolve: null,
+  pendingView: null, lastFrameUrl: null, frameTimes: [], lastSolve: null, openAfterList: null, reconnected: false,
 };
 const SEND_INTERVAL_MS = 50;  // at most 20 pose updates a second while dragging
 
@@ -54,7 +54,11 @@ function connect() {
   const ws = new WebSocket(url);
   ws.binaryType = "blob";
   state.ws = ws;
-  ws.onopen = () => { $("connection").textContent = "connected"; send({ type: "list_cases" }); };
+  ws.onopen = () => {
+    $("connection").textContent = "connected";
+    state.reconnected = true;
+    send({ type: "list_cases" });
+  };
   ws.onclose = () => {
     $("connection").textContent = "disconnected — reconnecting…";
     setEnabled(false);
@@ -69,7 +73,11 @@ const handlers = {
     const select = $("case-select");
     select.innerHTML = "";
     for (const c of m.cases) select.add(new Option(`${c.name} — ${c.description}`, c.id));
-    if (state.caseId) { select.value = state.caseId; openCase(state.caseId); }  // after a reconnect
+    // A patient just imported opens at once; after a reconnect the case that was open opens again.
+    const next = state.openAfterList || (state.reconnected ? state.caseId : null);
+    state.openAfterList = null;
+    state.reconnected = false;
+    if (next) { select.value = next; openCase(next); }
   },
   opening: (m) => say(`opening ${m.case}…`),
   opened: (m) => onOpened(m),

@@ -15,10 +15,23 @@ namespace fs = std::filesystem;
 CaseLibrary::CaseLibrary(std::vector<CaseEntry> catalog, fs::path dataDir)
     : catalog_(std::move(catalog)), dataDir_(std::move(dataDir)) {}
 
-const CaseEntry* CaseLibrary::find(const std::string& id) const {
+std::vector<CaseEntry> CaseLibrary::catalog() const {
+  const std::lock_guard<std::mutex> lock(catalogMutex_);
+  return catalog_;
+}
+
+std::optional<CaseEntry> CaseLibrary::find(const std::string& id) const {
+  const std::lock_guard<std::mutex> lock(catalogMutex_);
   for (const CaseEntry& c : catalog_)
-    if (c.id == id) return &c;
-  return nullptr;
+    if (c.id == id) return c;
+  return std::nullopt;
+}
+
+void CaseLibrary::add(CaseEntry entry) {
+  const std::lock_guard<std::mutex> lock(catalogMutex_);
+  for (const CaseEntry& c : catalog_)
+    if (c.id == entry.id) throw std::invalid_argument("a case '" + entry.id + "' exists already");
+  catalog_.push_back(std::move(entry));
 }
 
 // The shipped face's case file names the shipped files in place (never copied); written into the
@@ -115,7 +128,7 @@ std::shared_ptr<const T> CaseLibrary::once(std::map<Key, std::shared_future<std:
 }
 
 std::shared_ptr<const CaseModel> CaseLibrary::model(const std::string& id, Resolution resolution) {
-  const CaseEntry* entry = find(id);
+  const std::optional<CaseEntry> entry = find(id);
   if (!entry) throw std::invalid_argument("unknown case '" + id + "'");
   return once(models_, std::make_pair(id, resolution), [&] { return build(*entry, resolution); });
 }

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,8 +22,11 @@ class CaseLibrary {
  public:
   CaseLibrary(std::vector<CaseEntry> catalog, std::filesystem::path dataDir);
 
-  const std::vector<CaseEntry>& catalog() const { return catalog_; }
-  const CaseEntry* find(const std::string& id) const;
+  // The cases now: the catalog grows while the server runs (patients imported from the page).
+  std::vector<CaseEntry> catalog() const;
+  std::optional<CaseEntry> find(const std::string& id) const;
+  // Adds a case; throws std::invalid_argument when its id is taken.
+  void add(CaseEntry entry);
 
   // Blocks until the model is built (or built by another caller); a failed build is not kept,
   // so a later call tries again. Throws std::invalid_argument for an unknown id, otherwise what
@@ -44,6 +48,7 @@ class CaseLibrary {
   std::shared_ptr<const T> once(std::map<Key, std::shared_future<std::shared_ptr<const T>>>& cache, const Key& key,
                                 const Build& build);
 
+  mutable std::mutex catalogMutex_;
   std::vector<CaseEntry> catalog_;
   std::filesystem::path dataDir_;
   mutable std::mutex mutex_;

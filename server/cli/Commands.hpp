@@ -142,6 +142,7 @@ struct ServeOptions {
   int unopenedTimeoutSeconds = 300;  // a session that opens no case in this time is closed
   int previewIterations = 100;       // what one preview may spend (server::PlanningOptions)
   double previewSeconds = 15;
+  int maxUploadMb = 256;  // a patient's upload from the page (net::HttpLimits::uploadBytes)
 };
 // Serves HTTP (and later the WebSocket API) until SIGINT or SIGTERM; 0 on a clean stop, 1 when
 // the server cannot start (bad host, port taken, no web folder).

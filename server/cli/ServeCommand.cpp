@@ -49,6 +49,7 @@ net::ServerOptions serverOptions(const ServeOptions& options) {
     }
     for (const std::string& s : skipped) std::cerr << "orthosim serve: skipped " << s << "\n";
   }
+  server.limits.uploadBytes = static_cast<std::size_t>(options.maxUploadMb) * 1024 * 1024;
   server.planning.fineWorkers = options.fineWorkers;
   server.planning.maxSessions = options.maxSessions;
   server.webSocket.unopenedTimeout = std::chrono::seconds(options.unopenedTimeoutSeconds);

@@ -112,7 +112,7 @@ std::optional<Refusal> AccessPolicy::checkOrigin(const Request& request) const {
     if (origin == "http://" + self || origin == "https://" + self) return std::nullopt;
   }
   return Refusal{http::status::forbidden, "bad_origin",
-                 "WebSocket from origin '" + origin + "' refused (allow it with --allow-origin)"};
+                 "request from a page of origin '" + origin + "' refused (allow it with --allow-origin)"};
 }
 
 }  // namespace orthosim::net

@@ -22,12 +22,11 @@ StringResponse download(const server::ExportedFile& file, const ReplyTo& to) {
 
 }  // namespace
 
-ApiRoutes::ApiRoutes(server::PlanningService& service)
-    : service_(service), cases_(server::casesJson(service.cases().catalog())) {}
+ApiRoutes::ApiRoutes(server::PlanningService& service) : service_(service) {}
 
 std::optional<Response> ApiRoutes::get(std::string_view path, const ReplyTo& to) const {
   if (path == "/api/health") return jsonResponse(http::status::ok, service_.health(ORTHOSIM_VERSION), to);
-  if (path == "/api/cases") return jsonResponse(http::status::ok, cases_, to);
+  if (path == "/api/cases") return jsonResponse(http::status::ok, server::casesJson(service_.cases().catalog()), to);
   if (path.rfind(kExports, 0) == 0) {
     const std::string id(path.substr(kExports.size()));
     if (std::optional<server::ExportedFile> file = service_.exports().find(id)) return download(*file, to);

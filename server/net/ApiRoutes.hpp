@@ -18,7 +18,6 @@ class ApiRoutes {
 
  private:
   server::PlanningService& service_;
-  nlohmann::json cases_;  // fixed for the server's lifetime: built once
 };
 
 }  // namespace orthosim::net

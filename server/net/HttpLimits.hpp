@@ -6,9 +6,12 @@
 namespace orthosim::net {
 
 struct HttpLimits {
-  std::size_t headerBytes = 16 * 1024;   // request line and headers; browsers send about 1-2 KiB
-  std::size_t bodyBytes = 64 * 1024;     // request body; the HTTP API takes none yet
-  std::chrono::seconds idleTimeout{30};  // a connection silent this long is closed
+  std::size_t headerBytes = 16 * 1024;  // request line and headers; browsers send about 1-2 KiB
+  std::size_t bodyBytes = 64 * 1024;    // request body of every route but the upload
+  // A patient's upload (POST /api/patients): skin, bones and texture as exported, uncompressed.
+  std::size_t uploadBytes = 256 * 1024 * 1024;
+  std::chrono::seconds uploadTimeout{300};  // to send the upload over a slow link
+  std::chrono::seconds idleTimeout{30};     // a connection silent this long is closed
 };
 
 }  // namespace orthosim::net

@@ -3,6 +3,7 @@
 #include <boost/asio/dispatch.hpp>
 
 #include "net/JsonResponses.hpp"
+#include "net/PatientUploadRoute.hpp"
 
 namespace orthosim::net {
 namespace beast = boost::beast;
@@ -13,11 +14,15 @@ constexpr std::size_t kMaxDrainBytes = 1024 * 1024;
 constexpr std::chrono::seconds kDrainTimeout{2};
 
 // The reply to a request the parser rejected, or nullopt when the connection just ended.
-std::optional<StringResponse> parseErrorReply(beast::error_code ec, const HttpLimits& limits) {
+// `upload`: the request is a patient's upload, which has its own body limit.
+std::optional<StringResponse> parseErrorReply(beast::error_code ec, const HttpLimits& limits, bool upload) {
   const ReplyTo to{11, false, false};
   if (ec == http::error::body_limit)
     return jsonError(http::status::payload_too_large, "body_too_large",
-                     "request body over the limit of " + std::to_string(limits.bodyBytes) + " bytes", "", to);
+                     "request body over the limit of " +
+                         (upload ? std::to_string(limits.uploadBytes / (1024 * 1024)) + " MiB (--max-upload-mb)"
+                                 : std::to_string(limits.bodyBytes) + " bytes"),
+                     "", to);
   if (ec == http::error::header_limit)
     return jsonError(http::status::request_header_fields_too_large, "header_too_large",
                      "request headers over the limit of " + std::to_string(limits.headerBytes) + " bytes", "", to);
@@ -41,8 +46,26 @@ void HttpSession::start() {
 void HttpSession::readRequest() {
   parser_.emplace();
   parser_->header_limit(static_cast<std::uint32_t>(limits_.headerBytes));
-  parser_->body_limit(limits_.bodyBytes);
+  // Beast checks a declared length against the limit while it parses the headers: allow the
+  // upload's here, and hold every other route to its own once the headers say which it is.
+  parser_->body_limit(std::max(limits_.bodyBytes, limits_.uploadBytes));
   stream_.expires_after(limits_.idleTimeout);
+  http::async_read_header(stream_, buffer_, *parser_,
+                          beast::bind_front_handler(&HttpSession::onHeader, shared_from_this()));
+}
+
+void HttpSession::onHeader(beast::error_code ec, std::size_t bytes) {
+  if (ec) return onRead(ec, bytes);
+  if (isPatientUpload(parser_->get())) {
+    if (std::optional<StringResponse> refusal = context_->router->refuseUpload(parser_->get()))
+      return send(std::move(*refusal), true);
+    stream_.expires_after(limits_.uploadTimeout);
+  } else {
+    const boost::optional<std::uint64_t> length = parser_->content_length();
+    if (length && *length > limits_.bodyBytes)
+      return send(*parseErrorReply(http::error::body_limit, limits_, false), true);
+    parser_->body_limit(limits_.bodyBytes);  // a chunked body is counted as it comes
+  }
   http::async_read(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::onRead, shared_from_this()));
 }
 
@@ -53,13 +76,25 @@ void HttpSession::onRead(beast::error_code ec, std::size_t) {
     return;
   }
   if (ec) {
-    if (std::optional<StringResponse> reply = parseErrorReply(ec, limits_)) send(std::move(*reply), true);
+    const bool upload = isPatientUpload(parser_->get());  // the request line is parsed first
+    if (std::optional<StringResponse> reply = parseErrorReply(ec, limits_, upload)) send(std::move(*reply), true);
     return;  // otherwise the session ends here and its socket closes
   }
   if (websocket::is_upgrade(parser_->get())) return upgrade();
+  if (isPatientUpload(parser_->get())) return importPatient();
   Response response = context_->router->handle(parser_->get());
   const bool closeAfter = std::visit([](const auto& r) { return r.need_eof(); }, response);
   send(std::move(response), closeAfter);
+}
+
+void HttpSession::importPatient() {
+  const bool keepAlive = parser_->get().keep_alive();
+  auto self = shared_from_this();
+  net::importPatient(*context_->planning, parser_->release(), [self, keepAlive](StringResponse response) {
+    boost::asio::dispatch(self->stream_.get_executor(), [self, keepAlive, response = std::move(response)]() mutable {
+      self->send(std::move(response), !keepAlive);
+    });
+  });
 }
 
 void HttpSession::upgrade() {

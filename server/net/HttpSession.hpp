@@ -21,7 +21,10 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
 
  private:
   void readRequest();
+  // The headers first: an upload is checked and given its larger body limit before its body.
+  void onHeader(boost::beast::error_code ec, std::size_t bytes);
   void onRead(boost::beast::error_code ec, std::size_t bytes);
+  void importPatient();
   void upgrade();
   void send(Response&& response, bool closeAfter);
   void onWrite(bool closeAfter, boost::beast::error_code ec, std::size_t bytes);

@@ -51,6 +51,18 @@ Response Router::handle(const Request& request) const {
   return serveStaticFile(web_, target->path, to);
 }
 
+std::optional<StringResponse> Router::refuseUpload(const Request& request) const {
+  const ReplyTo to{request.version(), false, false};
+  const std::optional<RequestTarget> target =
+      parseRequestTarget(std::string_view(request.target().data(), request.target().size()));
+  if (!target) return jsonError(http::status::bad_request, "bad_target", "malformed request target", "", to);
+  // A page of another site may post a form here without asking (no CORS preflight): Origin too.
+  for (auto check : {&AccessPolicy::checkHost, &AccessPolicy::checkOrigin})
+    if (std::optional<Refusal> r = (policy_.*check)(request)) return refusal(*r, target->path, to);
+  if (std::optional<Refusal> r = policy_.checkToken(request, *target)) return refusal(*r, target->path, to);
+  return std::nullopt;
+}
+
 std::optional<StringResponse> Router::refuseUpgrade(const Request& request) const {
   const ReplyTo to{request.version(), false, false};
   const std::string_view rawTarget(request.target().data(), request.target().size());

@@ -19,6 +19,8 @@ class Router {
   // nullopt when the upgrade may proceed (path /ws, Host, token and Origin accepted); otherwise
   // the reply that refuses it.
   std::optional<StringResponse> refuseUpgrade(const Request& request) const;
+  // The same for an upload (isPatientUpload), on its headers, before its body is read.
+  std::optional<StringResponse> refuseUpload(const Request& request) const;
 
  private:
   WebRoot web_;

@@ -6,6 +6,7 @@ namespace {
 
 bool isTemporaryPlan(const fs::path& p) { return p.filename().string().find(".json.tmp") != std::string::npos; }
 bool isUnfinishedCase(const fs::path& p) { return p.filename().string().find(".writing-") != std::string::npos; }
+bool isUnfinishedImport(const fs::path& p) { return p.filename().string().find(".importing-") != std::string::npos; }
 
 }  // namespace
 
@@ -15,6 +16,11 @@ std::vector<std::string> removeLeftovers(const fs::path& dataDir) {
   if (fs::is_directory(dataDir / "cases", ec))
     for (const fs::directory_entry& e : fs::directory_iterator(dataDir / "cases", ec))
       if (isUnfinishedCase(e.path())) found.push_back(e.path());
+  if (fs::is_directory(dataDir / "patients", ec))
+    for (const fs::directory_entry& e : fs::directory_iterator(dataDir / "patients", ec))
+      if (isUnfinishedImport(e.path())) found.push_back(e.path());
+  if (fs::is_directory(dataDir / "imports", ec))  // uploads staged for an import, all unfinished
+    for (const fs::directory_entry& e : fs::directory_iterator(dataDir / "imports", ec)) found.push_back(e.path());
   if (fs::is_directory(dataDir / "plans", ec))
     for (const fs::directory_entry& e : fs::recursive_directory_iterator(dataDir / "plans", ec))
       if (e.is_regular_file(ec) && isTemporaryPlan(e.path())) found.push_back(e.path());

@@ -1,7 +1,8 @@
 #pragma once
 // What an interrupted server leaves in its data folder: plan files half-saved when it was killed
 // (plans/<case>/<name>.json.tmp<pid>-<n>) and case folders half-written when a write failed
-// (cases/<id>.writing-<pid>/). Neither is ever read; the server that holds the folder's lock
+// (cases/<id>.writing-<pid>/), imported patients half-written (patients/.<id>.importing-<pid>/)
+// and the uploads staged for an import (imports/*). None is ever read; the server that holds the folder's lock
 // (DataFolderLock) removes them at start, since no other process can be writing them.
 #include <filesystem>
 #include <string>

@@ -13,9 +13,20 @@ PlanningService::PlanningService(PlanningOptions options)
       cases_(options_.cases, options_.dataDir),
       fineJobs_(options_.fineWorkers, options_.fineQueue, /*niceness=*/10),
       plans_(options_.dataDir / "plans"),
+      patients_(options_.dataDir, cases_),
       previewPool_(static_cast<std::size_t>(std::max(1, options_.previewThreads))) {
   for (const std::string& leftover : removeLeftovers(options_.dataDir))
     std::cerr << "orthosim serve: removed " << leftover << ", left by an interrupted write\n";
+  // Patients imported from the page before: after the leftovers went, so none is half-written.
+  std::vector<std::string> skipped;
+  for (const CaseEntry& c : PatientImporter::imported(options_.dataDir, &skipped)) {
+    try {
+      cases_.add(c);
+    } catch (const std::invalid_argument& e) {
+      skipped.push_back("patients/" + c.id + ": " + e.what());
+    }
+  }
+  for (const std::string& s : skipped) std::cerr << "orthosim serve: skipped imported patient " << s << "\n";
 }
 
 PlanningService::~PlanningService() { shutdown(); }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cases/CaseLibrary.hpp"
+#include "cases/PatientImport.hpp"
 #include "session/AnatomicalPose.hpp"
 #include "session/DataFolderLock.hpp"
 #include "session/ExportStore.hpp"
@@ -47,6 +48,10 @@ class PlanningService {
   boost::asio::thread_pool& renderPool() { return renderPool_; }
   JobQueue& fineJobs() { return fineJobs_; }
   PlanStore& plans() { return plans_; }
+  PatientImporter& patients() { return patients_; }
+  // Imports run here, one at a time, off the network threads (checking a patient's surfaces takes
+  // seconds).
+  boost::asio::thread_pool& importPool() { return importPool_; }
   ExportStore& exports() { return exports_; }
   const PoseLimits& limits() const { return options_.limits; }
   const PlanningOptions& options() const { return options_; }
@@ -70,10 +75,12 @@ class PlanningService {
   JobQueue fineJobs_;
   PlanStore plans_;
   ExportStore exports_;
+  PatientImporter patients_;
   std::atomic<int> sessions_{0};
   // Last, so destroyed first: work they still hold may end a session, which uses the members above.
   boost::asio::thread_pool previewPool_;
   boost::asio::thread_pool renderPool_{1};
+  boost::asio::thread_pool importPool_{1};
 };
 
 }  // namespace orthosim::server

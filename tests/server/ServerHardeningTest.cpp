@@ -175,9 +175,9 @@ int countLines(const fs::path& file, const std::string& needle) {
   return n;
 }
 
-// A server killed mid-save left plans/<case>/<name>.json.tmp<pid>-<n>, and a failed case write
-// left cases/<id>.writing-<pid>/, for good. The next server to hold the folder removes them and
-// nothing else.
+// A server killed mid-save left plans/<case>/<name>.json.tmp<pid>-<n>, a failed case write
+// left cases/<id>.writing-<pid>/, and an import patients/.<id>.importing-<pid>/ and imports/*, for good. The next
+// server to hold the folder removes them and nothing else.
 TEST(ServerHardening, LeftoversOfInterruptedWritesAreRemovedAtStart) {
   const fs::path data = scratch("leftovers");
   fs::create_directories(data / "plans" / "phantom-0");
@@ -186,13 +186,22 @@ TEST(ServerHardening, LeftoversOfInterruptedWritesAreRemovedAtStart) {
   std::ofstream(data / "plans" / "phantom-0" / "setback.json.tmp4242-0") << "{\"poses\":";
   std::ofstream(data / "plans" / "phantom-0" / "setback.json") << "{}\n";
   std::ofstream(data / "plans" / "phantom-0" / "notes.txt") << "kept\n";
+  // An import cut off mid-write (its case folder, with a case.json not yet renamed into place),
+  // and an upload staged for it.
+  fs::create_directories(data / "patients" / ".jane.importing-4242");
+  std::ofstream(data / "patients" / ".jane.importing-4242" / "case.json") << "{}\n";
+  fs::create_directories(data / "imports" / "jane.upload-4242-1");
+  std::ofstream(data / "imports" / "jane.upload-4242-1" / "skin.stl") << "solid\n";
   const fs::path log = data.parent_path() / "leftovers-stderr.txt";
   test::ServerProcess server({"--data", data.string(), "--no-warm-up"}, log.string());
   EXPECT_FALSE(fs::exists(data / "cases" / "phantom-0.writing-4242"));
   EXPECT_FALSE(fs::exists(data / "plans" / "phantom-0" / "setback.json.tmp4242-0"));
   EXPECT_TRUE(fs::exists(data / "plans" / "phantom-0" / "setback.json")) << "a saved plan stays";
   EXPECT_TRUE(fs::exists(data / "plans" / "phantom-0" / "notes.txt"));
-  EXPECT_EQ(countLines(log, "left by an interrupted write"), 2);
+  EXPECT_FALSE(fs::exists(data / "patients" / ".jane.importing-4242"));
+  EXPECT_FALSE(fs::exists(data / "imports" / "jane.upload-4242-1"));
+  EXPECT_EQ(countLines(log, "left by an interrupted write"), 4);
+  EXPECT_EQ(countLines(log, "skipped imported patient"), 0) << "a half-written import is no patient";
 }
 
 // A full disk while the phantom is written: the open fails with the system's reason, and no

@@ -10,8 +10,8 @@ export const cli = process.env.ORTHOSIM_CLI;
 export const dataDir = process.env.ORTHOSIM_TEST_DATA;
 export const artifacts = process.env.ARTIFACT_DIR || ".";
 
-export function startServer() {
-  const server = spawn(cli, ["serve", "--port", "0", "--data", dataDir, "--no-warm-up"], { stdio: ["ignore", "pipe", "inherit"] });
+export function startServer(data = dataDir) {
+  const server = spawn(cli, ["serve", "--port", "0", "--data", data, "--no-warm-up"], { stdio: ["ignore", "pipe", "inherit"] });
   const port = new Promise((resolve, reject) => {
     let out = "";
     server.stdout.on("data", (d) => {
@@ -25,10 +25,11 @@ export function startServer() {
   return { server, port };
 }
 
-// Runs body(page, url) against a fresh server and browser; both are closed whatever happens.
-export async function withPage(body) {
+// Runs body(page, url) against a fresh server (on `options.dataDir`, default the shared test data
+// folder) and browser; both are closed whatever happens.
+export async function withPage(body, options = {}) {
   if (!cli) throw new Error("ORTHOSIM_CLI must name the orthosim executable");
-  const { server, port } = startServer();
+  const { server, port } = startServer(options.dataDir || dataDir);
   const userData = mkdtempSync(path.join(tmpdir(), "orthosim-chromium-"));
   let context;
   try {

@@ -1,0 +1,158 @@
+#include "cases/PatientImport.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <map>
+
+#include "cases/Identifier.hpp"
+
+namespace orthosim::server {
+namespace fs = std::filesystem;
+namespace {
+
+// The file name endings each field takes (lower case).
+const std::map<std::string, std::vector<std::string>>& fieldEndings() {
+  static const std::map<std::string, std::vector<std::string>> endings = {
+      {"skin", {".stl", ".obj", ".ply"}},     {"skull", {".stl", ".obj", ".ply"}},
+      {"mandible", {".stl", ".obj", ".ply"}}, {"cavity", {".stl", ".obj", ".ply"}},
+      {"texture", {".png", ".jpg", ".jpeg"}}, {"landmarks", {".json"}}};
+  return endings;
+}
+
+std::string lowerEnding(const std::string& name) {
+  const std::size_t dot = name.rfind('.');
+  std::string e = dot == std::string::npos ? "" : name.substr(dot);
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e;
+}
+
+// A file name is stored as given, so it must be a plain name: no path, nothing hidden.
+void checkFileName(const UploadedFile& f) {
+  const std::string& n = f.fileName;
+  auto fail = [&](const std::string& why) {
+    throw PatientImportError("bad_file", f.field, f.field + ": file name '" + n + "' " + why);
+  };
+  if (n.empty()) fail("is empty: choose a file");
+  if (n.find('/') != std::string::npos || n.find('\\') != std::string::npos)
+    fail("has a path in it: only a file name is accepted");
+  if (n.size() > 128) fail("is longer than 128 characters");
+  if (n[0] == '.') fail("starts with '.'");
+  for (unsigned char c : n)
+    if (!(std::isalnum(c) || c == '.' || c == '_' || c == '-' || c == ' ' || c == '(' || c == ')' || c == '+'))
+      fail("has a character other than letters, digits, space and . _ - ( ) +");
+  const std::vector<std::string>& endings = fieldEndings().at(f.field);
+  if (std::find(endings.begin(), endings.end(), lowerEnding(n)) == endings.end()) {
+    std::string list;
+    for (const std::string& e : endings) list += (list.empty() ? "" : ", ") + e;
+    fail("is not one of " + list);
+  }
+}
+
+void checkUpload(const PatientUpload& u, const CaseLibrary& cases, const fs::path& out) {
+  if (!isIdentifier(u.id))
+    throw PatientImportError("bad_name", "id",
+                             "id: '" + u.id + "' is not a case identifier (1-64 letters, digits, '_' or '-', no path)");
+  if (cases.find(u.id) || fs::exists(out))
+    throw PatientImportError("case_exists", "id", "id: a case '" + u.id + "' exists already; choose another id");
+  if (u.units != "auto" && u.units != "mm" && u.units != "m")
+    throw PatientImportError("bad_field", "units", "units: '" + u.units + "' is none of auto, mm, m");
+  std::map<std::string, int> count;
+  std::map<std::string, std::string> names;  // lower-cased file name -> field
+  for (const UploadedFile& f : u.files) {
+    if (!isUploadField(f.field))
+      throw PatientImportError("bad_field", f.field,
+                               f.field +
+                                   ": no such file field (skin, skull, mandible, cavity, "
+                                   "texture, landmarks)");
+    checkFileName(f);
+    std::string key = f.fileName;
+    std::transform(key.begin(), key.end(), key.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (auto [it, fresh] = names.emplace(key, f.field); !fresh)
+      throw PatientImportError(
+          "bad_file", f.field,
+          f.field + ": '" + f.fileName + "' has the same name as the " + it->second + " file; rename one");
+    if (++count[f.field] > 1 && f.field != "cavity")
+      throw PatientImportError("bad_file", f.field, f.field + ": more than one file; send one");
+    if (f.data.empty()) throw PatientImportError("bad_file", f.field, f.fileName + ": the file is empty");
+  }
+  for (const char* needed : {"skin", "skull", "mandible"})
+    if (!count.count(needed))
+      throw PatientImportError(
+          "missing_file", needed,
+          std::string(needed) + ": no file; the " + needed + " surface is needed (STL, OBJ or PLY)");
+}
+
+// Messages of the engine's importer name files by their staged paths: show the user's names.
+std::string withoutFolder(std::string message, const std::string& folder) {
+  for (std::size_t at; (at = message.find(folder)) != std::string::npos;) message.erase(at, folder.size());
+  return message;
+}
+
+// The staging folder is removed on every way out.
+struct StagingFolder {
+  fs::path path;
+  ~StagingFolder() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
+}  // namespace
+
+bool isUploadField(const std::string& field) { return fieldEndings().count(field) > 0; }
+
+PatientImporter::PatientImporter(fs::path dataDir, CaseLibrary& cases) : dataDir_(std::move(dataDir)), cases_(cases) {}
+
+ImportedPatient PatientImporter::import(const PatientUpload& upload) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const fs::path out = dataDir_ / "patients" / upload.id;
+  checkUpload(upload, cases_, out);
+  const StagingFolder staging{dataDir_ / "imports" /
+                              (upload.id + ".upload-" + std::to_string(::getpid()) + "-" + std::to_string(++staged_))};
+  fs::create_directories(staging.path);
+  fs::create_directories(out.parent_path());
+  CaseImportInput input;
+  input.units = upload.units;
+  input.cuts = upload.cuts;
+  input.name = upload.name.empty() ? upload.id : upload.name;
+  for (const UploadedFile& f : upload.files) {
+    const fs::path file = staging.path / f.fileName;
+    std::ofstream(file, std::ios::binary).write(f.data.data(), static_cast<std::streamsize>(f.data.size()));
+    if (fs::file_size(file) != f.data.size())
+      throw PatientImportError("import_failed", f.field, "cannot stage " + f.fileName + " in the data folder");
+    if (f.field == "skin") input.skin = file.string();
+    if (f.field == "skull") input.skull = file.string();
+    if (f.field == "mandible") input.mandible = file.string();
+    if (f.field == "cavity") input.cavities.push_back(file.string());
+    if (f.field == "texture") input.texture = file.string();
+    if (f.field == "landmarks") input.landmarks = file.string();
+  }
+  ImportedPatient imported;
+  try {
+    imported.report = importCase(input, out.string());
+  } catch (const CaseImportError& e) {
+    throw PatientImportError("import_failed", "", withoutFolder(e.what(), staging.path.string() + "/"));
+  } catch (const std::exception& e) {
+    throw PatientImportError("import_failed", "", withoutFolder(e.what(), staging.path.string() + "/"));
+  }
+  for (std::string& w : imported.report.warnings) w = withoutFolder(w, staging.path.string() + "/");
+  imported.entry.id = upload.id;
+  imported.entry.name = input.name;
+  imported.entry.description = "imported patient " + upload.id;
+  imported.entry.source = "import";
+  imported.entry.caseFile = fs::absolute(out / "case.json");
+  cases_.add(imported.entry);
+  return imported;
+}
+
+std::vector<CaseEntry> PatientImporter::imported(const fs::path& dataDir, std::vector<std::string>* skipped) {
+  if (!fs::is_directory(dataDir / "patients")) return {};
+  std::vector<CaseEntry> cases = folderCases(dataDir / "patients", skipped);
+  for (CaseEntry& c : cases) c.source = "import", c.description = "imported patient " + c.id;
+  return cases;
+}
+
+}  // namespace orthosim::server

@@ -1,0 +1,66 @@
+#pragma once
+// A patient uploaded from the page (issue 20): the files of the "New patient" form become a case
+// folder <data>/patients/<id>/ through the engine's importer (scene/CaseImport), which checks them
+// and writes the folder complete or not at all, and the case joins the library. The uploaded files
+// are staged in <data>/imports/<id>.upload-<pid>-<n>/ under their own names (so that every message
+// names the file the user chose) and removed whatever happens.
+#include <filesystem>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cases/CaseLibrary.hpp"
+#include "scene/CaseImport.hpp"
+
+namespace orthosim::server {
+
+struct UploadedFile {
+  std::string field;     // skin, skull, mandible, cavity, texture or landmarks
+  std::string fileName;  // as the user's machine named it
+  std::string data;
+};
+
+struct PatientUpload {
+  std::string id;                 // the new case's identifier (isIdentifier)
+  std::string name;               // for a human; default the id
+  std::string units = "auto";     // mm, m, or auto (mm, refusing sizes that look like metres)
+  std::vector<std::string> cuts;  // osteotomy templates
+  std::vector<UploadedFile> files;
+};
+
+struct ImportedPatient {
+  CaseEntry entry;
+  CaseImportReport report;
+};
+
+// What is wrong with an upload: `code` is stable for clients (bad_name, case_exists, bad_file,
+// missing_file, bad_field, import_failed), `field` the form field at fault (may be empty).
+struct PatientImportError : std::runtime_error {
+  PatientImportError(std::string code, std::string field, const std::string& message)
+      : std::runtime_error(message), code(std::move(code)), field(std::move(field)) {}
+  std::string code;
+  std::string field;
+};
+
+// The fields a file may come in, and the file name endings each takes.
+bool isUploadField(const std::string& field);
+
+class PatientImporter {
+ public:
+  PatientImporter(std::filesystem::path dataDir, CaseLibrary& cases);
+
+  // Checks, imports and adds the case; one import at a time. Throws PatientImportError.
+  ImportedPatient import(const PatientUpload& upload);
+
+  // The patients imported before (<data>/patients/<id>/case.json), for the catalog at start.
+  static std::vector<CaseEntry> imported(const std::filesystem::path& dataDir, std::vector<std::string>* skipped);
+
+ private:
+  std::filesystem::path dataDir_;
+  CaseLibrary& cases_;
+  std::mutex mutex_;
+  int staged_ = 0;
+};
+
+}  // namespace orthosim::server

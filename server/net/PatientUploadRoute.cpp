@@ -1,0 +1,103 @@
+#include "net/PatientUploadRoute.hpp"
+
+#include <algorithm>
+#include <boost/asio/post.hpp>
+
+#include "cases/Identifier.hpp"
+#include "net/JsonResponses.hpp"
+#include "net/RequestTarget.hpp"
+
+namespace orthosim::net {
+namespace {
+
+StringResponse uploadError(http::status status, const std::string& code, const std::string& field,
+                           const std::string& message, const ReplyTo& to) {
+  nlohmann::json body = {{"error", code}, {"message", message}, {"path", kPatientsPath}};
+  if (!field.empty()) body["field"] = field;
+  return jsonResponse(status, body, to);
+}
+
+http::status statusOf(const std::string& code) {
+  return code == "case_exists" ? http::status::conflict : http::status::bad_request;
+}
+
+std::vector<std::string> commaList(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t from = 0;
+  for (std::size_t comma; from <= s.size(); from = comma + 1) {
+    comma = s.find(',', from);
+    if (comma == std::string::npos) comma = s.size();
+    std::string item = s.substr(from, comma - from);
+    item.erase(0, item.find_first_not_of(' '));
+    item.erase(item.find_last_not_of(' ') + 1);
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+}  // namespace
+
+bool isPatientUpload(const Request& request) {
+  if (request.method() != http::verb::post) return false;
+  const std::optional<RequestTarget> target =
+      parseRequestTarget(std::string_view(request.target().data(), request.target().size()));
+  return target && target->path == kPatientsPath;
+}
+
+server::PatientUpload patientUploadFromForm(const std::vector<FormPart>& parts) {
+  using server::PatientImportError;
+  server::PatientUpload upload;
+  for (const FormPart& p : parts) {
+    if (server::isUploadField(p.name)) {
+      upload.files.push_back({p.name, p.fileName, p.data});
+    } else if (!p.fileName.empty()) {
+      throw PatientImportError("bad_field", p.name, p.name + ": a file in a field that takes none");
+    } else if (p.name == "id") {
+      upload.id = p.data;
+    } else if (p.name == "name") {
+      if (p.data.size() > 200) throw PatientImportError("bad_field", "name", "name: longer than 200 characters");
+      upload.name = p.data;
+    } else if (p.name == "units") {
+      upload.units = p.data;
+    } else if (p.name == "cuts") {
+      for (const std::string& cut : commaList(p.data)) upload.cuts.push_back(cut);
+    } else {
+      throw PatientImportError("bad_field", p.name,
+                               p.name +
+                                   ": no such field (id, name, units, cuts, skin, skull, mandible, cavity, "
+                                   "texture, landmarks)");
+    }
+  }
+  // A browser sends an empty part for a file input left empty: that is no file.
+  upload.files.erase(std::remove_if(upload.files.begin(), upload.files.end(),
+                                    [](const server::UploadedFile& f) { return f.fileName.empty() && f.data.empty(); }),
+                     upload.files.end());
+  return upload;
+}
+
+void importPatient(server::PlanningService& service, Request request, std::function<void(StringResponse)> done) {
+  boost::asio::post(service.importPool(), [&service, request = std::move(request), done = std::move(done)] {
+    const ReplyTo to = replyTo(request);
+    try {
+      const std::vector<FormPart> parts =
+          parseMultipartForm(request.body(), formBoundary(std::string_view(request[http::field::content_type].data(),
+                                                                           request[http::field::content_type].size())));
+      const server::ImportedPatient imported = service.patients().import(patientUploadFromForm(parts));
+      nlohmann::json body = server::casesJson({imported.entry})["cases"][0];
+      done(jsonResponse(http::status::created,
+                        {{"case", body},
+                         {"scale", imported.report.scale},
+                         {"frame", imported.report.frame},
+                         {"warnings", imported.report.warnings}},
+                        to));
+    } catch (const FormError& e) {
+      done(uploadError(http::status::bad_request, "bad_form", "", e.what(), to));
+    } catch (const server::PatientImportError& e) {
+      done(uploadError(statusOf(e.code), e.code, e.field, e.what(), to));
+    } catch (const std::exception& e) {
+      done(uploadError(http::status::internal_server_error, "import_failed", "", e.what(), to));
+    }
+  });
+}
+
+}  // namespace orthosim::net

@@ -1,0 +1,232 @@
+// A new patient uploaded over HTTP (issue 20, point 1): the phantom's own exported surfaces become a
+// case in the list that opens and previews, is still there after a restart, and each bad upload gets
+// its own clear error and leaves no case and no staged file behind.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "HttpTestClient.hpp"
+#include "ServerProcess.hpp"
+#include "WsTestClient.hpp"
+#include "phantom/PhantomCase.hpp"
+
+namespace http = boost::beast::http;
+
+namespace orthosim {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+struct Part {
+  std::string field, fileName, data;  // fileName empty: a plain field
+};
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The raw request a browser's FormData makes, with Connection: close.
+std::string uploadRequest(const std::vector<Part>& parts, const std::string& extraHeaders = "") {
+  const std::string boundary = "----orthosimTestBoundary7MA4YWxk";
+  std::string body;
+  for (const Part& p : parts) {
+    body += "--" + boundary + "\r\nContent-Disposition: form-data; name=\"" + p.field + "\"";
+    if (!p.fileName.empty()) body += "; filename=\"" + p.fileName + "\"\r\nContent-Type: application/octet-stream";
+    body += "\r\n\r\n" + p.data + "\r\n";
+  }
+  body += "--" + boundary + "--\r\n";
+  return "POST /api/patients HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\nContent-Type: multipart/form-data; "
+         "boundary=" +
+         boundary + "\r\nContent-Length: " + std::to_string(body.size()) + "\r\n" + extraHeaders + "\r\n" + body;
+}
+
+class PatientUpload : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    export_ = new fs::path(fs::temp_directory_path() / ("orthosim_upload_export_" + std::to_string(::getpid())));
+    writePhantomCase(0, export_->string());
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*export_);
+    delete export_;
+  }
+  void SetUp() override {
+    data_ = fs::temp_directory_path() / ("orthosim_upload_data_" + std::to_string(::getpid()) + "_" +
+                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(data_);
+  }
+  void TearDown() override {
+    fs::remove_all(data_);
+    fs::remove_all(data_.string() + "-1MiB");
+  }
+
+  static Part file(const std::string& field, const std::string& name) {
+    return {field, name, readFile(*export_ / name)};
+  }
+  static std::vector<Part> phantomParts(const std::string& id) {
+    return {{"id", "", id},
+            {"name", "", "Test patient"},
+            {"units", "", "auto"},
+            {"cuts", "", "le_fort_1,bsso"},
+            file("skin", "skin.obj"),
+            file("skull", "skull.stl"),
+            file("mandible", "mandible.stl"),
+            file("cavity", "oral_cavity.stl"),
+            file("texture", "skin.jpg"),
+            file("landmarks", "landmarks.json")};
+  }
+  std::vector<std::string> serverArgs(std::vector<std::string> more = {}) const {
+    std::vector<std::string> args{"--data", data_.string(), "--no-warm-up"};
+    args.insert(args.end(), more.begin(), more.end());
+    return args;
+  }
+  static test::HttpReply upload(unsigned short port, const std::vector<Part>& parts, const std::string& headers = "") {
+    const std::vector<test::HttpReply> replies = test::httpRaw(port, uploadRequest(parts, headers));
+    if (replies.size() != 1) throw std::runtime_error("expected one reply, got " + std::to_string(replies.size()));
+    return replies[0];
+  }
+  // The ids of /api/cases.
+  static std::vector<std::string> caseIds(unsigned short port) {
+    std::vector<std::string> ids;
+    const json cases = json::parse(test::httpGet(port, "/api/cases").body());
+    for (const json& c : cases["cases"]) ids.push_back(c["id"]);
+    return ids;
+  }
+  // What the data folder holds of imports: patient folders and staged uploads.
+  std::vector<std::string> importsOnDisk() const {
+    std::vector<std::string> found;
+    for (const char* sub : {"patients", "imports"})
+      if (fs::is_directory(data_ / sub))
+        for (const auto& e : fs::directory_iterator(data_ / sub))
+          found.push_back(std::string(sub) + "/" + e.path().filename().string());
+    std::sort(found.begin(), found.end());
+    return found;
+  }
+
+  static inline fs::path* export_ = nullptr;
+  fs::path data_;
+};
+
+TEST_F(PatientUpload, ThePhantomsSurfacesBecomeACaseThatOpensPreviewsAndStays) {
+  {
+    test::ServerProcess server(serverArgs());
+    const test::HttpReply reply = upload(server.port(), phantomParts("patient-1"));
+    ASSERT_EQ(reply.result(), http::status::created) << reply.body();
+    const json created = json::parse(reply.body());
+    EXPECT_EQ(created["case"]["id"], "patient-1");
+    EXPECT_EQ(created["case"]["name"], "Test patient");
+    EXPECT_EQ(created["case"]["source"], "import");
+    EXPECT_EQ(created["scale"], 1.0);
+    const std::vector<std::string> ids = caseIds(server.port());
+    EXPECT_NE(std::find(ids.begin(), ids.end(), "patient-1"), ids.end());
+    EXPECT_EQ(importsOnDisk(), std::vector<std::string>{"patients/patient-1"});  // nothing staged is left
+
+    // It plans like any case: open, move the maxilla its Le Fort I made, get a converged preview.
+    test::WsTestClient ws(server.port());
+    EXPECT_EQ(ws.request({{"type", "open"}, {"case", "patient-1"}})["type"], "opening");
+    const json opened = ws.waitFor("opened", 180s);
+    EXPECT_EQ(opened["cuts"][0]["kind"], "le_fort_1") << opened.dump();
+    const json poses = ws.request({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 2.0}}}}}});
+    ASSERT_EQ(poses["type"], "poses") << poses.dump();
+    const json preview = ws.waitFor("preview", 120s);
+    EXPECT_TRUE(preview["figures"]["converged"].get<bool>()) << preview.dump();
+    EXPECT_GT(preview["figures"]["landmarks"]["labrale_superius"]["anterior_mm"].get<double>(), 0.5);
+    ws.close();
+
+    // The same id again is refused, and leaves the first alone.
+    const test::HttpReply again = upload(server.port(), phantomParts("patient-1"));
+    EXPECT_EQ(again.result(), http::status::conflict);
+    EXPECT_EQ(json::parse(again.body())["error"], "case_exists");
+  }
+  test::ServerProcess restarted(serverArgs());  // what a surgeon imported is still there
+  const std::vector<std::string> ids = caseIds(restarted.port());
+  EXPECT_NE(std::find(ids.begin(), ids.end(), "patient-1"), ids.end());
+}
+
+TEST_F(PatientUpload, EachBadUploadGetsItsOwnErrorAndLeavesNothing) {
+  test::ServerProcess server(serverArgs());
+  auto refused = [&](std::vector<Part> parts, http::status status, const std::string& code, const std::string& field,
+                     const std::string& words, const std::string& headers = "") {
+    const test::HttpReply reply = upload(server.port(), parts, headers);
+    EXPECT_EQ(reply.result(), status) << reply.body();
+    const json error = json::parse(reply.body());
+    EXPECT_EQ(error["error"], code) << reply.body();
+    if (!field.empty()) EXPECT_EQ(error.value("field", ""), field) << reply.body();
+    EXPECT_NE(error["message"].get<std::string>().find(words), std::string::npos) << reply.body();
+    // Messages name the user's files, never the server's folders.
+    EXPECT_EQ(error["message"].get<std::string>().find(data_.string()), std::string::npos) << reply.body();
+    EXPECT_TRUE(importsOnDisk().empty()) << "left behind after " << code;
+  };
+  // Small surfaces under the 1 MiB limit: a box's worth, never imported here.
+  auto small = [](std::vector<Part> parts) {
+    for (Part& p : parts)
+      if (!p.fileName.empty()) p.data = p.data.substr(0, 1000);
+    return parts;
+  };
+  std::vector<Part> parts = small(phantomParts("../evil"));
+  refused(parts, http::status::bad_request, "bad_name", "id", "not a case identifier");
+
+  parts = small(phantomParts("p2"));
+  parts[4].fileName = "exports/skin.stl";
+  refused(parts, http::status::bad_request, "bad_file", "skin", "has a path in it");
+
+  parts = small(phantomParts("p2"));
+  parts.erase(parts.begin() + 6);  // no mandible
+  refused(parts, http::status::bad_request, "missing_file", "mandible", "mandible: no file");
+
+  parts = small(phantomParts("p2"));
+  parts[5].fileName = "skull.docx";
+  refused(parts, http::status::bad_request, "bad_file", "skull", "is not one of .stl, .obj, .ply");
+
+  parts = small(phantomParts("p2"));
+  parts.push_back({"notes", "", "x"});
+  refused(parts, http::status::bad_request, "bad_field", "notes", "no such field");
+
+  parts = small(phantomParts("p2"));
+  parts[2].data = "furlongs";
+  refused(parts, http::status::bad_request, "bad_field", "units", "none of auto, mm, m");
+
+  // Damaged surfaces: the importer's message names the user's file and the defect.
+  parts = phantomParts("p2");
+  parts[6].fileName = "broken_jaw.stl";
+  parts[6].data = parts[6].data.substr(0, 1000);
+  refused(parts, http::status::bad_request, "import_failed", "", "broken_jaw.stl");
+  parts = phantomParts("p2");
+  parts[4].fileName = "holed_skin.obj";
+  parts[4].data.erase(parts[4].data.find("\nf ") + 1, parts[4].data.find('\n', parts[4].data.find("\nf ") + 1) -
+                                                          parts[4].data.find("\nf "));  // one triangle less
+  refused(parts, http::status::bad_request, "import_failed", "", "holed_skin.obj");
+
+  // Over the limit (1 MiB here): refused on its declared length, before the body is read.
+  {
+    const fs::path otherData = data_.string() + "-1MiB";  // a data folder has one server
+    test::ServerProcess small1MiB({"--data", otherData.string(), "--no-warm-up", "--max-upload-mb", "1"});
+    const std::vector<test::HttpReply> replies =
+        test::httpRaw(small1MiB.port(),
+                      "POST /api/patients HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: multipart/form-data; "
+                      "boundary=B\r\nContent-Length: 2000000\r\n\r\n--B\r\n");
+    ASSERT_EQ(replies.size(), 1u);
+    EXPECT_EQ(replies[0].result(), http::status::payload_too_large);
+    EXPECT_EQ(json::parse(replies[0].body())["error"], "body_too_large");
+    EXPECT_FALSE(fs::exists(otherData / "patients"));
+    EXPECT_TRUE(!fs::exists(otherData / "imports") || fs::is_empty(otherData / "imports"));
+  }
+
+  // A page of another site may not post here.
+  refused(small(phantomParts("p2")), http::status::forbidden, "bad_origin", "", "refused",
+          "Origin: http://evil.example\r\n");
+
+  EXPECT_EQ(caseIds(server.port()).size(), 6u);  // the built-in cases only
+  EXPECT_EQ(test::httpGet(server.port(), "/api/health").result(), http::status::ok);
+}
+
+}  // namespace
+}  // namespace orthosim

@@ -1,0 +1,66 @@
+// Browser test of "New patient" (issue 20, point 1): the phantom's own surfaces, written by
+// `orthosim phantom`, are uploaded through the page's form; a bad file is refused with its name,
+// then the good set becomes a case that opens, and moving its Le Fort I maxilla gives a converged
+// preview. Runs on its own data folder, so the shared one never holds the imported patient.
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { execFileSync } from "node:child_process";
+import { copyFileSync, mkdtempSync, rmSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import path from "node:path";
+import { cli, withPage } from "./harness.mjs";
+
+test("new patient: upload surfaces, refusal named, case opens and previews", { timeout: 400000 }, async () => {
+  const work = mkdtempSync(path.join(tmpdir(), "orthosim-new-patient-"));
+  try {
+    const exported = path.join(work, "export");
+    execFileSync(cli, ["phantom", "--out", exported, "--variant", "0"], { stdio: "ignore" });
+    const file = (name) => path.join(exported, name);
+    const broken = path.join(work, "broken_jaw.stl");
+    writeFileSync(broken, "solid nothing\nendsolid nothing\n");
+    await withPage(async (page, url) => {
+      const pageErrors = [];
+      page.on("pageerror", (e) => pageErrors.push(e.message));
+      await page.goto(url);
+      await page.waitForFunction(() => document.querySelector("#case-select").options.length >= 5);
+      await page.click("#new-patient summary");
+      await page.fill('input[aria-label="case id"]', "jane-doe");
+      await page.fill('input[aria-label="patient name"]', "Jane Doe");
+      await page.setInputFiles('input[aria-label="skin file"]', file("skin.obj"));
+      await page.setInputFiles('input[aria-label="skull file"]', file("skull.stl"));
+      await page.setInputFiles('input[aria-label="mandible file"]', broken);
+      await page.setInputFiles('input[aria-label="cavity files"]', file("oral_cavity.stl"));
+      await page.setInputFiles('input[aria-label="landmarks file"]', file("landmarks.json"));
+
+      // A damaged mandible: refused, with its file named; nothing joins the list.
+      await page.click("#import-patient");
+      await page.waitForFunction(() => /not imported/.test(document.querySelector("#import-status").textContent), null, { timeout: 120000 });
+      assert.match(await page.locator("#import-status").textContent(), /broken_jaw\.stl/);
+
+      // The right mandible: imported, listed, opened.
+      await page.setInputFiles('input[aria-label="mandible file"]', file("mandible.stl"));
+      await page.click("#import-patient");
+      await page.waitForFunction(() => /imported Jane Doe/.test(document.querySelector("#import-status").textContent), null, { timeout: 120000 });
+      assert.equal(Number(await page.locator("#import-progress").evaluate((p) => p.value)), 1);
+      await page.waitForFunction(() => [...document.querySelector("#case-select").options].some((o) => o.value === "jane-doe"));
+      const slider = page.locator('input[aria-label="maxilla anterior_mm"]');
+      await slider.waitFor({ timeout: 180000 });
+      assert.equal(await page.locator("#case-select").inputValue(), "jane-doe");
+
+      // Le Fort I 2 mm forward: a converged preview in which the upper lip follows.
+      await page.waitForFunction(() => /Solved in/.test(document.querySelector("#preview-figures").textContent), null, { timeout: 120000 });
+      await slider.focus();
+      for (let i = 0; i < 4; i++) await page.keyboard.press("ArrowRight");
+      assert.equal(Number(await slider.inputValue()), 2);
+      await page.waitForFunction(() => {
+        const rows = [...document.querySelectorAll("#preview-figures tr")];
+        const lip = rows.find((r) => /upper lip/.test(r.textContent));
+        return lip && Number(lip.children[1].textContent) > 0.5;
+      }, null, { timeout: 120000 });
+      await page.waitForFunction(() => document.querySelector("#solve-state").dataset.state === "converged", null, { timeout: 120000 });
+      assert.deepEqual(pageErrors, [], "no script errors on the page");
+    }, { dataDir: path.join(work, "data") });
+  } finally {
+    rmSync(work, { recursive: true, force: true });
+  }
+});
