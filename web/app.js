@@ -23,6 +23,7 @@ const state = {
   ws: null, caseId: null, fragments: [], poses: {}, limits: { translation_mm: 30, rotation_deg: 30 },
   posesDirty: false, sendTimer: null, lastSend: -Infinity, job: null, nextId: 1, viewInFlight: false,
   pendingView: null, lastFrameUrl: null, frameTimes: [], lastSolve: null, openAfterList: null, reconnected: false,
+  frameSize: null,
 };
 const SEND_INTERVAL_MS = 50;  // at most 20 pose updates a second while dragging
 
@@ -108,7 +109,9 @@ const handlers = {
     a.textContent = `download ${m.file_name} (${(m.bytes / 1e6).toFixed(1)} MB)`;
     a.hidden = false;
   },
+  picked: (m) => onPicked(m),
   frame: (m) => {
+    state.frameSize = [m.width, m.height];
     const now = performance.now();
     state.frameTimes = state.frameTimes.filter((t) => now - t < 1000).concat(now);  // frames in the last second
     $("frame-info").textContent = `${m.view} view, colour map: ${m.colormap}, ${m.width}×${m.height}, drawn in ${m.render_ms.toFixed(0)} ms, ${state.frameTimes.length} fps`;
@@ -319,8 +322,15 @@ function flushView() {
 function setupViewer() {
   const box = $("frame-box");
   let drag = null;
-  box.onpointerdown = (e) => { drag = { x: e.clientX, y: e.clientY, pan: e.shiftKey }; box.setPointerCapture(e.pointerId); };
-  box.onpointerup = () => { drag = null; };
+  box.onpointerdown = (e) => {
+    drag = { x: e.clientX, y: e.clientY, pan: e.shiftKey, startX: e.clientX, startY: e.clientY };
+    box.setPointerCapture(e.pointerId);
+  };
+  box.onpointerup = (e) => {
+    // A click (no drag) picks what the frame shows under the pointer.
+    if (drag && Math.hypot(e.clientX - drag.startX, e.clientY - drag.startY) < 3) pickAt(e.clientX, e.clientY);
+    drag = null;
+  };
   box.onpointermove = (e) => {
     if (!drag) return;
     const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
@@ -344,6 +354,25 @@ function setupViewer() {
   $("show-bones").onchange = () => sendView({ bones: $("show-bones").checked });
   $("before-after").onchange = () => sendView({ before_after: $("before-after").checked });
   window.addEventListener("resize", () => state.caseId && sendView({ size: frameSize() }));
+}
+
+// The frame's pixel under a client position: the image is letterboxed (object-fit: contain).
+function pickAt(clientX, clientY) {
+  if (!state.caseId || !state.frameSize) return;
+  const r = $("frame").getBoundingClientRect();
+  const [w, h] = state.frameSize;
+  const scale = Math.min(r.width / w, r.height / h);
+  const x = (clientX - r.left - (r.width - w * scale) / 2) / scale;
+  const y = (clientY - r.top - (r.height - h * scale) / 2) / scale;
+  if (x < 0 || y < 0 || x > w || y > h) return;
+  send({ type: "pick", x, y });
+}
+
+function onPicked(m) {
+  const mm = (p) => p.map((v) => v.toFixed(1)).join(", ");
+  $("pick-info").textContent = m.surface
+    ? `picked ${m.surface} at (${mm(m.point_mm)}) mm; at rest (${mm(m.rest_mm)}) mm`
+    : "nothing under that pixel";
 }
 
 // ---- buttons --------------------------------------------------------------------------------

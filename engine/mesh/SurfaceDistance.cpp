@@ -64,6 +64,31 @@ NearestSurfacePoint SurfaceDistanceTree::nearest(const Eigen::Vector3d& p) const
   return out;
 }
 
+std::optional<NearestSurfacePoint> SurfaceDistanceTree::firstAlongRay(const Eigen::Vector3d& origin,
+                                                                      const Eigen::Vector3d& direction) const {
+  if (!origin.allFinite() || !direction.allFinite() || direction.norm() == 0) return std::nullopt;
+  const Kernel::Ray_3 ray(point(origin), Kernel::Vector_3(direction.x(), direction.y(), direction.z()));
+  const auto hit = impl_->tree.first_intersection(ray);
+  if (!hit) return std::nullopt;
+  // A ray meets a triangle in a point, or along a segment when it lies in its plane: take the
+  // segment's nearer end.
+  Kernel::Point_3 at;
+  if (const Kernel::Point_3* p = boost::get<Kernel::Point_3>(&hit->first)) {
+    at = *p;
+  } else if (const Kernel::Segment_3* s = boost::get<Kernel::Segment_3>(&hit->first)) {
+    at = CGAL::squared_distance(ray.source(), s->source()) <= CGAL::squared_distance(ray.source(), s->target())
+             ? s->source()
+             : s->target();
+  } else {
+    return std::nullopt;
+  }
+  NearestSurfacePoint out;
+  out.point = Eigen::Vector3d(at.x(), at.y(), at.z());
+  out.distance = (out.point - origin).norm();
+  out.triangle = impl_->source[hit->second - impl_->triangles.cbegin()];
+  return out;
+}
+
 const std::vector<int>& SurfaceDistanceTree::keptTriangles() const { return impl_->source; }
 
 Eigen::VectorXd distancesToSurface(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles,

@@ -1,12 +1,14 @@
 #pragma once
 // The engine's one point-to-surface query: the nearest point of a triangle surface (open or
-// closed) and its triangle, through a CGAL AABB tree built once. Contact's signed distance
+// closed) and its triangle, through a CGAL AABB tree built once; and on the same tree, the first
+// point a ray meets. Contact's signed distance
 // (contact/RigidSurface), the skin embedding's points outside the mesh (PointEmbedding) and the
 // distance checks all ask it.
 // Kept in the orthosim_cgal target with SelfIntersection.cpp: CGAL's compile flags
 // (-frounding-math) must not reach the solver, so this header names no CGAL type.
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,11 @@ class SurfaceDistanceTree {
   SurfaceDistanceTree& operator=(SurfaceDistanceTree&&) noexcept;
 
   NearestSurfacePoint nearest(const Eigen::Vector3d& p) const;  // thread-safe
+  // The first point of the surface along the ray from `origin` in `direction` (any length), with
+  // `distance` along the ray in mm; nullopt when the ray misses. What a click on a drawn surface
+  // picks (the camera's ray through the pixel).
+  std::optional<NearestSurfacePoint> firstAlongRay(const Eigen::Vector3d& origin,
+                                                   const Eigen::Vector3d& direction) const;
   // The triangles (columns) in the tree, in increasing order: all but those of zero area.
   const std::vector<int>& keptTriangles() const;
 

@@ -71,6 +71,12 @@ double Camera::eyeDepth(double depth) const {
   return 2.0 * f * n / ((f + n) - ndc * (f - n));
 }
 
+Eigen::Vector3d Camera::rayThroughPixel(double x, double y, int width, int height) const {
+  const double tanHalf = std::tan(0.5 * radians(fieldOfViewDeg));
+  const double ndcX = 2.0 * x / width - 1.0, ndcY = 1.0 - 2.0 * y / height;
+  return (viewDirection() + ndcX * tanHalf * double(width) / height * right() + ndcY * tanHalf * up()).normalized();
+}
+
 double Camera::mmPerPixel(int height) const {
   return 2.0 * distance * std::tan(0.5 * radians(fieldOfViewDeg)) / height;
 }

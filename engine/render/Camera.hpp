@@ -39,6 +39,9 @@ struct Camera {
   // Distance in mm along the view direction of a point at window depth `depth` (inverts the
   // projection's non-linear depth, so depth-buffer values compare in mm).
   double eyeDepth(double depth) const;
+  // Unit direction from eye() through pixel (x, y) of a width x height image (the inverse of
+  // project's x and y): what a click at that pixel points at.
+  Eigen::Vector3d rayThroughPixel(double x, double y, int width, int height) const;
   // mm at the target's distance that one pixel spans in an image `height` pixels high.
   double mmPerPixel(int height) const;
 

@@ -205,7 +205,8 @@ void PlanningSession::dispatch(const std::string& type, MessageReader& r, const 
                                                           {"save_plan", &PlanningSession::savePlan},
                                                           {"load_plan", &PlanningSession::loadPlan},
                                                           {"export", &PlanningSession::exportSkin},
-                                                          {"view", &PlanningSession::view}};
+                                                          {"view", &PlanningSession::view},
+                                                          {"pick", &PlanningSession::pick}};
   auto it = handlers.find(type);
   if (it == handlers.end()) {
     std::string known;
@@ -723,6 +724,34 @@ void PlanningSession::view(MessageReader& r, const json&) {
   if (!v) return;
   v->postView(request);
   requestFrame();
+}
+
+// A click on the streamed face: picked on the render thread, with the camera and skin of the last
+// frame drawn, in order with the frames around it.
+void PlanningSession::pick(MessageReader& r, const json& id) {
+  requireOpen();
+  if (!r.has("x") || !r.has("y")) r.fail("missing_field", "/x, /y: the pixel to pick is needed", "/x");
+  const double x = r.number("x", 0, 0, 8192, "pixels"), y = r.number("y", 0, 0, 8192, "pixels");
+  r.rejectUnknown();
+  std::shared_ptr<SessionView> v;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (renderFailed_) throw ProtocolError("render_unavailable", "no frames are drawn on this server: nothing to pick");
+    v = view_;
+  }
+  if (!v) throw ProtocolError("case_not_open", "the case is still opening: nothing is drawn yet");
+  auto self = shared_from_this();
+  frames_.submit(
+      [self, v, x, y, id](const std::atomic<bool>&) {
+        try {
+          json picked = v->pick(x, y);
+          picked["type"] = "picked";
+          self->reply(std::move(picked), id);
+        } catch (const std::exception& e) {
+          self->sendError("pick_failed", std::string("the pick failed: ") + e.what(), "", id);
+        }
+      },
+      SerialWork::Kind::Ordered);
 }
 
 void PlanningSession::postCoarseFineDifference(const CaseModel& coarse, const Eigen::Matrix3Xd& coarseX,

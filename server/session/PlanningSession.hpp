@@ -57,6 +57,7 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   void loadPlan(MessageReader& r, const nlohmann::json& id);
   void exportSkin(MessageReader& r, const nlohmann::json& id);
   void view(MessageReader& r, const nlohmann::json& id);
+  void pick(MessageReader& r, const nlohmann::json& id);
   void requestFrame();
   void showLinear(const nlohmann::json& id);
   void scheduleDragResponse(const std::shared_ptr<OpenCase>& c, long long seq, const SimState& state);

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "render/CaseView.hpp"
+#include "render/SurfacePick.hpp"
 
 namespace orthosim::server {
 namespace {
@@ -39,6 +40,7 @@ void SessionView::create() {
   renderer_ = std::make_unique<render::Renderer>(kDefaultWidth, kDefaultHeight, 0);  // no MSAA: 2x the fps
   render::setCase(*renderer_, *model_, render::caseTexture(model_->spec));
   jpeg_ = std::make_unique<render::JpegEncoder>(85);
+  restSkin_ = model_->deformedSkin(model_->scene.mesh.rest);
   camera_ = render::clinicalCamera(render::ClinicalView::Frontal, model_->spec.frame, renderer_->skinPositions(),
                                    renderer_->viewAspect(options_));
 }
@@ -91,6 +93,21 @@ Frame SessionView::render() {
                 {"colormap", render::colorMapNames()[static_cast<size_t>(options_.colorMap)]},
                 {"shows", shows_}};
   return frame;
+}
+
+nlohmann::json SessionView::pick(double x, double y) {
+  if (!renderer_) create();
+  nlohmann::json out = {{"x", x}, {"y", y}, {"view", preset_}, {"surface", nullptr}};
+  // The camera and skin of the last frame drawn: what the user clicked on.
+  const std::optional<render::SurfacePick> hit = render::pickSurface(
+      camera_, x, y, renderer_->width(), renderer_->height(), restSkin_, renderer_->skinPositions());
+  if (!hit) return out;
+  auto vec = [](const Eigen::Vector3d& p) { return nlohmann::json::array({p.x(), p.y(), p.z()}); };
+  out["surface"] = "skin";
+  out["point_mm"] = vec(hit->point);
+  out["rest_mm"] = vec(hit->rest);
+  out["depth_mm"] = hit->depthMm;
+  return out;
 }
 
 }  // namespace orthosim::server

@@ -41,6 +41,9 @@ class SessionView {
 
   // The render thread only. Throws RenderError (no EGL, bad texture).
   Frame render();
+  // The render thread only: what pixel (x, y) of the last frame shows of the skin as drawn,
+  // {"x", "y", "surface": "skin" or null, "point_mm", "rest_mm", "depth_mm"} (docs/protocol.md).
+  nlohmann::json pick(double x, double y);
 
  private:
   void create();  // the renderer, the case uploaded, the frontal camera
@@ -60,6 +63,7 @@ class SessionView {
   std::string preset_ = "frontal";
   render::RenderOptions options_;
   RgbImage image_;
+  SurfaceMesh restSkin_;  // what picks map back to
 };
 
 }  // namespace orthosim::server

@@ -60,6 +60,27 @@ TEST_F(PlanningFrames, TheFirstDragIsDrawnFromTheRestResponse) {
   EXPECT_EQ(linear["shows"]["preview"], 0);
 }
 
+// A click on the streamed face picks the skin the last frame shows (picking itself is checked
+// against the camera in SurfacePickTest): the middle of the frontal view is skin, in front of the
+// face and at rest where it was; the corner is background; a pick without its pixel is refused.
+TEST_F(PlanningFrames, AClickPicksTheSkinTheFrameShows) {
+  nextFrame(*ws_);
+  const json skin = ws_->request({{"type", "pick"}, {"x", 400}, {"y", 300}});
+  ASSERT_EQ(skin["type"], "picked") << skin.dump();
+  EXPECT_EQ(skin["surface"], "skin");
+  EXPECT_EQ(skin["view"], "frontal");
+  const std::vector<double> point = skin["point_mm"], rest = skin["rest_mm"];
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(point[k], rest[k], 1e-9) << "at rest the drawn skin is the rest skin";
+  EXPECT_GT(skin["depth_mm"].get<double>(), 0.0);
+  EXPECT_LT(std::abs(point[1]), 40.0) << "the frontal view's middle is near the midline (y is the right axis)";
+  const json background = ws_->request({{"type", "pick"}, {"x", 2}, {"y", 2}});
+  EXPECT_EQ(background["type"], "picked");
+  EXPECT_TRUE(background["surface"].is_null()) << background.dump();
+  const json missing = ws_->request({{"type", "pick"}, {"x", 2}});
+  EXPECT_EQ(missing["type"], "error");
+  EXPECT_EQ(missing["error"], "missing_field");
+}
+
 TEST_F(PlanningFrames, ViewChangesDrawNewFrames) {
   nextFrame(*ws_);
   const std::string frontal = ws_->lastBinary();

@@ -1,7 +1,7 @@
 // Browser test of "New patient" (issue 20, point 1): the phantom's own surfaces, written by
 // `orthosim phantom`, are uploaded through the page's form; a bad file is refused with its name,
-// then the good set becomes a case that opens, and moving its Le Fort I maxilla gives a converged
-// preview. Runs on its own data folder, so the shared one never holds the imported patient.
+// then the good set becomes a case that opens, moving its Le Fort I maxilla gives a converged
+// preview, and a click on the face picks the skin. Runs on its own data folder, so the shared one never holds the imported patient.
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
@@ -58,6 +58,10 @@ test("new patient: upload surfaces, refusal named, case opens and previews", { t
         return lip && Number(lip.children[1].textContent) > 0.5;
       }, null, { timeout: 120000 });
       await page.waitForFunction(() => document.querySelector("#solve-state").dataset.state === "converged", null, { timeout: 120000 });
+      // A click (no drag) on the face picks the skin under it.
+      const box = await page.locator("#frame-box").boundingBox();
+      await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2);
+      await page.waitForFunction(() => /picked skin at/.test(document.querySelector("#pick-info").textContent), null, { timeout: 30000 });
       assert.deepEqual(pageErrors, [], "no script errors on the page");
     }, { dataDir: path.join(work, "data") });
   } finally {
