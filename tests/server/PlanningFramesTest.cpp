@@ -2,6 +2,7 @@
 // each preview and view change, never a backlog.
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "ServerProcess.hpp"
@@ -67,6 +68,7 @@ TEST_F(PlanningFrames, AClickPicksTheSkinTheFrameShows) {
   nextFrame(*ws_);
   const json skin = ws_->request({{"type", "pick"}, {"x", 400}, {"y", 300}});
   ASSERT_EQ(skin["type"], "picked") << skin.dump();
+  std::cout << "picked: " << skin.dump() << "\n";
   EXPECT_EQ(skin["surface"], "skin");
   EXPECT_EQ(skin["view"], "frontal");
   const std::vector<double> point = skin["point_mm"], rest = skin["rest_mm"];
