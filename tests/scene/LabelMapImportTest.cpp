@@ -76,9 +76,9 @@ int paint(Grid& g, const SurfaceMesh& s, std::uint8_t label) {
 }
 
 void writeNifti(const Grid& g, const std::string& path) { test::writeNiftiLabels(g, path); }
-void writeNrrd(const Grid& g, const std::string& path, bool gzip,
-               const std::string& space = "left-posterior-superior") {
-  test::writeNrrdLabels(g, path, gzip, space);
+void writeNrrd(const Grid& g, const std::string& path, bool gzip, const std::string& space = "left-posterior-superior",
+               const Eigen::Matrix3d* directions = nullptr) {
+  test::writeNrrdLabels(g, path, gzip, space, directions);
 }
 
 // A box of label 7 (voxels i in [3, 12], j in [4, 9], k in [5, 14]) in a 20 x 16 x 24 grid.
@@ -137,6 +137,21 @@ TEST_F(LabelMapImport, OriginSpacingAndOrientationAreHonoured) {
     EXPECT_LT((b.max() - hi).cwiseAbs().maxCoeff(), h) << name << " max " << b.max().transpose();
     EXPECT_GT(box.signedVolume(), 0.8 * (hi - lo).prod()) << name << ": closed and outward";
   }
+  // Oblique axes (turned 30 degrees about z) and a detached header (.nhdr + .raw): the surface's
+  // vertices, taken back to voxel indices, bound the box's voxels (VTK's reader alone would keep
+  // the spacing and drop the directions).
+  const double angle = 30.0 * std::acos(-1.0) / 180.0;
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d oblique = h * turn;
+  writeNrrd(g, (dir_ / "oblique.nhdr").string(), false, "left-posterior-superior", &oblique);
+  const LabelMap obliqueMap = readLabelMap((dir_ / "oblique.nhdr").string());
+  EXPECT_LT((obliqueMap.directions - oblique).norm(), 1e-9);
+  const SurfaceMesh turned = labelMapSurfaces(obliqueMap, {{"box", {7}, false}})[0];
+  const Eigen::Matrix3Xd index = oblique.inverse() * (turned.vertices.colwise() - origin);
+  const Eigen::Vector3d indexLo = index.rowwise().minCoeff(), indexHi = index.rowwise().maxCoeff();
+  EXPECT_LT((indexLo - Eigen::Vector3d(2.5, 3.5, 4.5)).cwiseAbs().maxCoeff(), 1.0) << indexLo.transpose();
+  EXPECT_LT((indexHi - Eigen::Vector3d(12.5, 9.5, 14.5)).cwiseAbs().maxCoeff(), 1.0) << indexHi.transpose();
+
   // The same voxels saved in RAS are the box turned half a turn about z.
   writeNrrd(g, (dir_ / "box_ras.nrrd").string(), false, "right-anterior-superior");
   const LabelMap ras = readLabelMap((dir_ / "box_ras.nrrd").string());

@@ -36,25 +36,32 @@ void writeNiftiLabels(const LabelGrid& g, const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path + ": not written");
 }
 
-void writeNrrdLabels(const LabelGrid& g, const std::string& path, bool gzip, const std::string& space) {
+void writeNrrdLabels(const LabelGrid& g, const std::string& path, bool gzip, const std::string& space,
+                     const Eigen::Matrix3d* directions) {
+  const Eigen::Matrix3d d = directions ? *directions : Eigen::Matrix3d(g.spacing * Eigen::Matrix3d::Identity());
+  const std::filesystem::path file(path);
+  const bool detached = file.extension() == ".nhdr";
+  const std::string dataPath = detached ? (file.parent_path() / (file.stem().string() + ".raw")).string() : path;
   std::ostringstream header;
   header.precision(17);
   header << "NRRD0004\n# written by orthosim's tests\ntype: uint8\ndimension: 3\nspace: " << space
-         << "\nsizes: " << g.n.x() << " " << g.n.y() << " " << g.n.z() << "\nspace directions: (" << g.spacing
-         << ",0,0) (0," << g.spacing << ",0) (0,0," << g.spacing
-         << ")\nkinds: domain domain domain\nendian: little\nencoding: " << (gzip ? "gzip" : "raw")
-         << "\nspace origin: (" << g.origin.x() << "," << g.origin.y() << "," << g.origin.z() << ")\n\n";
-  std::ofstream(path, std::ios::binary) << header.str();
+         << "\nsizes: " << g.n.x() << " " << g.n.y() << " " << g.n.z() << "\nspace directions:";
+  for (int c = 0; c < 3; ++c) header << " (" << d(0, c) << "," << d(1, c) << "," << d(2, c) << ")";
+  header << "\nkinds: domain domain domain\nendian: little\nencoding: " << (gzip ? "gzip" : "raw")
+         << "\nspace origin: (" << g.origin.x() << "," << g.origin.y() << "," << g.origin.z() << ")\n";
+  if (detached) header << "data file: " << std::filesystem::path(dataPath).filename().string() << "\n";
+  std::ofstream(path, std::ios::binary) << header.str() << (detached ? "" : "\n");
+  if (detached) std::ofstream(dataPath, std::ios::binary);  // empty: the voxels alone follow
   if (!gzip) {
-    std::ofstream(path, std::ios::binary | std::ios::app)
+    std::ofstream(dataPath, std::ios::binary | std::ios::app)
         .write(reinterpret_cast<const char*>(g.labels.data()), static_cast<std::streamsize>(g.labels.size()));
     return;
   }
-  gzFile z = gzopen(path.c_str(), "ab");
-  if (!z) throw std::runtime_error(path + ": cannot open for gzip");
+  gzFile z = gzopen(dataPath.c_str(), "ab");
+  if (!z) throw std::runtime_error(dataPath + ": cannot open for gzip");
   const int written = gzwrite(z, g.labels.data(), static_cast<unsigned>(g.labels.size()));
   gzclose(z);
-  if (written != static_cast<int>(g.labels.size())) throw std::runtime_error(path + ": gzip write failed");
+  if (written != static_cast<int>(g.labels.size())) throw std::runtime_error(dataPath + ": gzip write failed");
 }
 
 void writeNiftiIntensities(const std::string& path) {

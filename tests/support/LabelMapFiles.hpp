@@ -22,9 +22,11 @@ struct LabelGrid {
 // grid's coordinates are LPS). Throws std::runtime_error when the file is not written.
 void writeNiftiLabels(const LabelGrid& grid, const std::string& path);
 // NRRD with `space` (left-posterior-superior, right-anterior-superior, ...) taking the grid's
-// coordinates as they are, its voxels raw or gzip-encoded.
+// coordinates as they are, its voxels raw or gzip-encoded; a .nhdr path gets a detached header and
+// the voxels in <stem>.raw beside it. `directions` (columns: the steps of i, j, k), when given,
+// replace spacing times the identity: an oblique grid.
 void writeNrrdLabels(const LabelGrid& grid, const std::string& path, bool gzip,
-                     const std::string& space = "left-posterior-superior");
+                     const std::string& space = "left-posterior-superior", const Eigen::Matrix3d* directions = nullptr);
 // A float NIfTI image with fractional values (an intensity image, not a label map).
 void writeNiftiIntensities(const std::string& path);
 
