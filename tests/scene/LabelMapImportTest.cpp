@@ -174,6 +174,13 @@ TEST_F(LabelMapImport, BadMapsAndMissingLabelsAreNamedAndLeaveNothing) {
   EXPECT_NE(m.find(map), std::string::npos) << m;
   EXPECT_NE(m.find("label 2 (chosen for the skull) is not in the label map; its labels are 7"), std::string::npos) << m;
 
+  in.skullLabels = {};
+  m = refusal(in, dir_ / "case");
+  EXPECT_NE(m.find("head.nii: no label chosen for the skull"), std::string::npos) << m;
+  in.skullLabels = {7};  // the soft tissue's too
+  m = refusal(in, dir_ / "case");
+  EXPECT_NE(m.find("head.nii: label 7 is chosen twice"), std::string::npos) << m;
+
   in.skin = (dir_ / "skin.stl").string();  // both sources
   m = refusal(in, dir_ / "case");
   EXPECT_NE(m.find("either a label map or the skin"), std::string::npos) << m;
