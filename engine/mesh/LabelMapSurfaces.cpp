@@ -5,10 +5,12 @@
 #include <vtkDiscreteFlyingEdges3D.h>
 #include <vtkIdList.h>
 #include <vtkImageData.h>
+#include <vtkLogger.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNIFTIImageHeader.h>
 #include <vtkNIFTIImageReader.h>
 #include <vtkNrrdReader.h>
+#include <vtkOutputWindow.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkQuadricDecimation.h>
@@ -23,6 +25,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <sstream>
 #include <unordered_set>
 
@@ -54,6 +57,17 @@ std::string list(const std::vector<int>& values, size_t most = 20) {
   return out.empty() ? "none" : out;
 }
 
+// VTK prints some warnings (a short read in vtkImageReader) to the terminal through its output
+// window and logger rather than to the reader's observers: silenced once for the process, as what
+// matters is checked here (the voxels' byte count) and errors reach the observers below.
+void quietVtk() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    vtkOutputWindow::GetInstance()->SetDisplayMode(vtkOutputWindow::NEVER);
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  });
+}
+
 // Collects what VTK reports instead of letting it print to the terminal.
 class VtkMessages {
  public:
@@ -63,7 +77,7 @@ class VtkMessages {
       auto* messages = static_cast<VtkMessages*>(self);
       std::string line = text ? trim(static_cast<const char*>(text)) : std::string();
       // "ERROR: In .../vtkNrrdReader.cxx, line 123\nvtkNrrdReader (0x...): what": keep "what".
-      const size_t colon = line.rfind("): ");
+      const size_t colon = line.find("): ");
       if (colon != std::string::npos) line = line.substr(colon + 3);
       (event == vtkCommand::ErrorEvent ? messages->errors : messages->warnings) += (line.empty() ? "" : line + " ");
     });
@@ -184,7 +198,7 @@ std::vector<double> numbers(std::string text) {
 
 // The NRRD header's fields (lower-case keys). VTK's reader reads the voxels but keeps only the
 // spacing of "space directions" (not the axes' directions), so the placement is taken from here.
-std::map<std::string, std::string> nrrdFields(const std::string& path, bool detached) {
+std::map<std::string, std::string> nrrdFields(const std::string& path, bool detached, std::uintmax_t& headerBytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw LabelMapError(path + ": cannot read the file");
   std::string line;
@@ -195,6 +209,7 @@ std::map<std::string, std::string> nrrdFields(const std::string& path, bool deta
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) {
       if (detached) continue;
+      headerBytes = static_cast<std::uintmax_t>(in.tellg());
       break;  // the data follows
     }
     if (line[0] == '#') continue;
@@ -206,7 +221,8 @@ std::map<std::string, std::string> nrrdFields(const std::string& path, bool deta
 }
 
 LabelMap readNrrd(const std::string& path, bool detached) {
-  std::map<std::string, std::string> f = nrrdFields(path, detached);
+  std::uintmax_t headerBytes = 0;
+  std::map<std::string, std::string> f = nrrdFields(path, detached, headerBytes);
   const std::string encoding = lower(f.count("encoding") ? f["encoding"] : "raw");
   if (encoding != "raw" && encoding != "gzip" && encoding != "gz" && encoding != "ascii" && encoding != "text" &&
       encoding != "txt")
@@ -272,6 +288,21 @@ LabelMap readNrrd(const std::string& path, bool detached) {
   requireVolume(map, image->GetNumberOfScalarComponents());
   if (sizes.size() != 3 || sizes[0] != map.size[0] || sizes[1] != map.size[1] || sizes[2] != map.size[2])
     throw LabelMapError(path + ": NRRD sizes '" + f["sizes"] + "' do not match the voxels read");
+  // VTK reads raw voxels past the end of a short file without an error: count the bytes.
+  if (encoding == "raw") {
+    namespace fs = std::filesystem;
+    const std::string dataFile = f.count("data file") ? f["data file"] : f.count("datafile") ? f["datafile"] : "";
+    const bool single = dataFile.empty() || dataFile.find(' ') == std::string::npos;
+    const fs::path data = dataFile.empty() ? fs::path(path) : fs::path(path).parent_path() / dataFile;
+    std::error_code ec;
+    const std::uintmax_t bytes = fs::file_size(data, ec);
+    const std::uintmax_t needed = static_cast<std::uintmax_t>(image->GetNumberOfPoints()) * image->GetScalarSize();
+    const std::uintmax_t have = ec ? 0 : dataFile.empty() ? (bytes > headerBytes ? bytes - headerBytes : 0) : bytes;
+    if (single && have < needed)
+      throw LabelMapError(path + ": truncated: the voxels need " + std::to_string(needed) + " bytes, " +
+                          (dataFile.empty() ? std::string("the file holds ") : data.string() + " holds ") +
+                          std::to_string(have));
+  }
   map.directions = directions;
   map.origin = origin;
   map.voxels = wholeVoxels(image, path);
@@ -369,6 +400,7 @@ std::vector<int> LabelMap::labels() const {
 
 LabelMap readLabelMap(const std::string& path) {
   namespace fs = std::filesystem;
+  quietVtk();
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw LabelMapError(path + ": cannot read the label map: no such file");
   const std::string name = lower(fs::path(path).filename().string());

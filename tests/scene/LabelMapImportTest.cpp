@@ -204,6 +204,17 @@ TEST_F(LabelMapImport, BadMapsAndMissingLabelsAreNamedAndLeaveNothing) {
   m = refusal(in, dir_ / "case");
   EXPECT_NE(m.find("hex.nrrd: NRRD encoding 'hex' is not supported"), std::string::npos) << m;
 
+  // Files cut short: an NRRD's raw voxels (VTK reads past the end without a word) and a NIfTI.
+  in.labelMap = (dir_ / "short.nrrd").string();
+  std::ofstream(in.labelMap) << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 20 16 24\nencoding: raw\n\n0123";
+  m = refusal(in, dir_ / "case");
+  EXPECT_NE(m.find("short.nrrd: truncated: the voxels need 7680 bytes, the file holds 4"), std::string::npos) << m;
+  in.labelMap = (dir_ / "short.nii").string();
+  writeNifti(boxGrid(Eigen::Vector3d::Zero(), 1.0), in.labelMap);
+  fs::resize_file(in.labelMap, fs::file_size(in.labelMap) - 1000);
+  m = refusal(in, dir_ / "case");
+  EXPECT_NE(m.find("short.nii: cannot read the NIfTI image: NIFTI file is truncated"), std::string::npos) << m;
+
   // Fractional voxel values: an intensity image, not a label map.
   in.labelMap = (dir_ / "ct.nii").string();
   test::writeNiftiIntensities(in.labelMap);
