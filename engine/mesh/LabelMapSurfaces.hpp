@@ -5,7 +5,7 @@
 // discrete flying edges on the region's mask, windowed-sinc smoothing, quadric decimation.
 //
 // Frame: millimetres in the patient frame of DICOM, LPS (+x the patient's left, +y posterior,
-// +z superior), the frame in which 3D Slicer (4.11 on) and ITK-SNAP save surfaces and landmarks.
+// +z superior), ITK's frame and the one in which 3D Slicer (4.11 on) saves models and markups.
 // NIfTI's qform/sform world (RAS) and an NRRD "space" of right-anterior-superior are turned into
 // it (x and y negated); an NRRD in left-posterior-superior is taken as it is. Voxel centres are at
 // the image's physical points (origin + directions times index), so a region's surface lies half a
