@@ -24,6 +24,7 @@ PACKAGES=(
   libgl1-mesa-dri        # Mesa's drivers, among them llvmpipe, the CPU rasteriser (CI, this machine)
   libpng-dev             # PNG images: `orthosim render` output, PNG textures (engine/render)
   libstb-dev             # stb_easy_font.h: the bitmap font of the colour-map legend (header only)
+  libvtk9-dev            # VTK 9.1: label maps (NIfTI, NRRD) to surfaces (engine/mesh/LabelMapSurfaces)
 )
 
 missing=()

@@ -113,10 +113,28 @@ int main(int argc, char** argv) {
 
   orthosim::CaseImportInput importInput;
   std::string importOut, importCuts;
-  auto* import = app.add_subcommand("import", "Make a case from a patient's segmented surfaces (STL, OBJ, PLY)");
-  import->add_option("--skin", importInput.skin, "Closed skin (soft-tissue envelope) surface")->required();
-  import->add_option("--skull", importInput.skull, "Skull with the maxilla (held fixed)")->required();
-  import->add_option("--mandible", importInput.mandible, "Mandible")->required();
+  auto* import = app.add_subcommand(
+      "import", "Make a case from a patient's segmented surfaces (STL, OBJ, PLY) or label map (NIfTI, NRRD)");
+  auto* importSkin = import->add_option("--skin", importInput.skin, "Closed skin (soft-tissue envelope) surface");
+  auto* importSkull = import->add_option("--skull", importInput.skull, "Skull with the maxilla (held fixed)");
+  auto* importMandible = import->add_option("--mandible", importInput.mandible, "Mandible");
+  auto* importLabelMap =
+      import->add_option("--label-map", importInput.labelMap,
+                         "Instead of --skin, --skull, --mandible: one label map (.nii, .nii.gz, .nrrd, .nhdr)");
+  for (auto* surface : {importSkin, importSkull, importMandible}) importLabelMap->excludes(surface);
+  import
+      ->add_option("--tissue-labels", importInput.tissueLabels,
+                   "With --label-map: the soft tissue's label numbers (comma-separated)")
+      ->delimiter(',')
+      ->needs(importLabelMap);
+  import
+      ->add_option("--skull-labels", importInput.skullLabels,
+                   "With --label-map: the skull's (with the maxilla) label numbers")
+      ->delimiter(',')
+      ->needs(importLabelMap);
+  import->add_option("--mandible-labels", importInput.mandibleLabels, "With --label-map: the mandible's label numbers")
+      ->delimiter(',')
+      ->needs(importLabelMap);
   import->add_option("--cavity", importInput.cavities, "Closed air cavity inside the skin (repeatable)");
   import->add_option("--texture", importInput.texture, "Image for the skin's texture coordinates");
   import->add_option("--landmarks", importInput.landmarks, "JSON file of landmarks {name: [x, y, z]}");

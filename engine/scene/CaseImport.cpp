@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "mesh/LabelMapSurfaces.hpp"
 #include "mesh/PointsInside.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
@@ -100,6 +101,85 @@ void requirePartlyInside(const PointsInside& inSkin, const SurfaceMesh& cavity, 
                           "frame and units as the skin?");
 }
 
+// The skin, skull and mandible as read (not yet scaled or checked), each with the name that messages
+// give it: the surface files, or the label map's regions.
+struct Sources {
+  SurfaceMesh skin, skull, mandible;
+  std::string skinName, skullName, mandibleName;
+  bool fromLabelMap = false;
+  std::string labelMapNote;  // the voxels and their placement, for the user
+};
+
+std::string labelList(const std::vector<int>& labels) {
+  std::string out;
+  for (int l : labels) out += (out.empty() ? "" : ", ") + std::to_string(l);
+  return out;
+}
+
+Sources readSources(const CaseImportInput& in) {
+  Sources s;
+  const bool surfaces = !in.skin.empty() || !in.skull.empty() || !in.mandible.empty();
+  if (!in.labelMap.empty() && surfaces)
+    throw CaseImportError(in.labelMap + ": give either a label map or the skin, skull and mandible surfaces, not both");
+  if (in.labelMap.empty()) {
+    for (const auto& [path, what] : {std::pair{&in.skin, "skin"}, {&in.skull, "skull"}, {&in.mandible, "mandible"}})
+      if (path->empty())
+        throw CaseImportError(std::string("no ") + what +
+                              " surface given: give the skin, skull and mandible surfaces, or a label map");
+    s.skin = readSurface(in.skin);  // read once: its size tells the units
+    s.skull = readSurface(in.skull);
+    s.mandible = readSurface(in.mandible);
+    s.skinName = in.skin;
+    s.skullName = in.skull;
+    s.mandibleName = in.mandible;
+    return s;
+  }
+  std::vector<int> all = in.tissueLabels;
+  all.insert(all.end(), in.skullLabels.begin(), in.skullLabels.end());
+  all.insert(all.end(), in.mandibleLabels.begin(), in.mandibleLabels.end());
+  for (const auto& [labels, what] :
+       {std::pair{&in.tissueLabels, "soft tissue"}, {&in.skullLabels, "skull"}, {&in.mandibleLabels, "mandible"}})
+    if (labels->empty()) throw CaseImportError(in.labelMap + ": no label chosen for the " + what);
+  for (size_t a = 0; a < all.size(); ++a)
+    for (size_t b = a + 1; b < all.size(); ++b)
+      if (all[a] == all[b])
+        throw CaseImportError(in.labelMap + ": label " + std::to_string(all[a]) +
+                              " is chosen twice (soft tissue, skull and mandible need labels of their own)");
+  try {
+    const LabelMap map = readLabelMap(in.labelMap);
+    const std::vector<int> present = map.labels();
+    for (const auto& [labels, what] :
+         {std::pair{&in.tissueLabels, "soft tissue"}, {&in.skullLabels, "skull"}, {&in.mandibleLabels, "mandible"}})
+      for (int label : *labels)
+        if (!std::binary_search(present.begin(), present.end(), label))
+          throw CaseImportError(in.labelMap + ": label " + std::to_string(label) + " (chosen for the " + what +
+                                ") is not in the label map; its labels are " +
+                                (present.empty() ? std::string("none") : labelList(present)));
+    const std::vector<SurfaceMesh> surfaces =
+        labelMapSurfaces(map, {{"skin (the outer boundary of all tissue labels)", all, true},
+                               {"skull", in.skullLabels, false},
+                               {"mandible", in.mandibleLabels, false}});
+    s.skin = surfaces[0];
+    s.skull = surfaces[1];
+    s.mandible = surfaces[2];
+    std::ostringstream note;
+    note.precision(3);
+    const Eigen::Vector3d h = map.spacing();
+    note << in.labelMap << ": " << map.size[0] << " x " << map.size[1] << " x " << map.size[2] << " voxels of " << h[0]
+         << " x " << h[1] << " x " << h[2] << " mm, placed by " << map.orientation << "; surfaces of "
+         << s.skin.numTriangles() << " (skin), " << s.skull.numTriangles() << " (skull) and "
+         << s.mandible.numTriangles() << " (mandible) triangles";
+    s.labelMapNote = note.str();
+  } catch (const LabelMapError& e) {
+    throw CaseImportError(e.what());
+  }
+  s.skinName = in.labelMap + " (skin: labels " + labelList(all) + ")";
+  s.skullName = in.labelMap + " (skull: labels " + labelList(in.skullLabels) + ")";
+  s.mandibleName = in.labelMap + " (mandible: labels " + labelList(in.mandibleLabels) + ")";
+  s.fromLabelMap = true;
+  return s;
+}
+
 json readLandmarks(const std::string& path, double scale) {
   std::ifstream in(path);
   if (!in) throw CaseImportError(path + ": cannot read the landmarks file");
@@ -142,8 +222,17 @@ Landmarks flatten(const json& j) {
   return out;
 }
 
+// The patient frame of DICOM (LPS) as the anatomical frame of a label map's surfaces.
+AnatomicalFrame lpsFrame() {
+  AnatomicalFrame f;
+  f.anterior = Eigen::Vector3d(0, -1, 0);
+  f.superior = Eigen::Vector3d(0, 0, 1);
+  f.right = f.anterior.cross(f.superior);
+  return f;
+}
+
 json caseJson(const CaseImportInput& in, const std::string& name, const json& cavities, bool landmarks,
-              const std::optional<AnatomicalFrame>& fromLandmarks) {
+              const std::optional<AnatomicalFrame>& fromLandmarks, bool fromLabelMap) {
   json tissue = {{"skin", "skin.obj"}};
   if (!cavities.empty()) tissue["cavities"] = cavities;
   if (!in.texture.empty()) tissue["texture"] = "texture" + fs::path(in.texture).extension().string();
@@ -164,26 +253,30 @@ json caseJson(const CaseImportInput& in, const std::string& name, const json& ca
                   {"superior", vec(fromLandmarks->superior)},
                   {"right", vec(fromLandmarks->right)}};
   } else if (in.anterior || in.superior) {
-    const AnatomicalFrame defaults;
+    const AnatomicalFrame defaults = fromLabelMap ? lpsFrame() : AnatomicalFrame();
     const Eigen::Vector3d a = in.anterior.value_or(defaults.anterior).normalized();
     const Eigen::Vector3d s = in.superior.value_or(defaults.superior).normalized();
     if (std::abs(a.dot(s)) > 1e-6)
       throw CaseImportError("frame: anterior " + where(a) + " and superior " + where(s) + " must be orthogonal");
     c["frame"] = {{"anterior", vec(a)}, {"superior", vec(s)}, {"right", vec(a.cross(s))}};
+  } else if (fromLabelMap) {
+    const AnatomicalFrame f = lpsFrame();
+    c["frame"] = {{"anterior", vec(f.anterior)}, {"superior", vec(f.superior)}, {"right", vec(f.right)}};
   }
   return c;
 }
 
-void writeFolder(const CaseImportInput& in, SurfaceMesh skinAsRead, const fs::path& dir, double scale,
+void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir, double scale,
                  CaseImportReport& report) {
   std::vector<std::string>& w = report.warnings;
-  const SurfaceMesh skin = checked(std::move(skinAsRead), in.skin, scale, SurfaceRequirement::Closed, w);
-  const SurfaceMesh skull = checked(readSurface(in.skull), in.skull, scale, SurfaceRequirement::OpenAllowed, w);
+  const SurfaceMesh skin = checked(std::move(sources.skin), sources.skinName, scale, SurfaceRequirement::Closed, w);
+  const SurfaceMesh skull =
+      checked(std::move(sources.skull), sources.skullName, scale, SurfaceRequirement::OpenAllowed, w);
   const SurfaceMesh mandible =
-      checked(readSurface(in.mandible), in.mandible, scale, SurfaceRequirement::OpenAllowed, w);
+      checked(std::move(sources.mandible), sources.mandibleName, scale, SurfaceRequirement::OpenAllowed, w);
   const PointsInside inSkin(skin);
-  requireInside(skin, inSkin, skull, in.skull);
-  requireInside(skin, inSkin, mandible, in.mandible);
+  requireInside(skin, inSkin, skull, sources.skullName);
+  requireInside(skin, inSkin, mandible, sources.mandibleName);
   json cavities = json::array();
   for (size_t k = 0; k < in.cavities.size(); ++k) {
     const SurfaceMesh cavity =
@@ -215,9 +308,11 @@ void writeFolder(const CaseImportInput& in, SurfaceMesh skinAsRead, const fs::pa
                      ", superior " + where(frame->superior, 3);
   }
   if (report.frame.empty())
-    report.frame = in.anterior || in.superior ? "as given" : "the files' axes (anterior -x, superior +z)";
+    report.frame = in.anterior || in.superior ? "as given"
+                   : sources.fromLabelMap     ? "the label map's patient frame (LPS: anterior -y, superior +z)"
+                                              : "the files' axes (anterior -x, superior +z)";
   std::ofstream out(dir / "case.json");
-  out << caseJson(in, in.name, cavities, !in.landmarks.empty(), frame).dump(2) << "\n";
+  out << caseJson(in, in.name, cavities, !in.landmarks.empty(), frame, sources.fromLabelMap).dump(2) << "\n";
   out.close();
   if (!out) throw CaseImportError((dir / "case.json").string() + ": cannot write the case file");
   try {
@@ -245,15 +340,16 @@ CaseImportReport importCase(const CaseImportInput& input, const std::string& out
   for (const std::string& kind : input.cuts) boneOfTemplate(kind);  // unknown templates before any work
   CaseImportInput named = input;
   if (named.name.empty()) named.name = out.filename().string();
-  SurfaceMesh skin = readSurface(input.skin);  // read once: its size tells the units
+  Sources sources = readSources(input);
   CaseImportReport report;
-  report.scale = scaleFor(input.units, skin, input.skin);
+  report.scale = scaleFor(input.units, sources.skin, sources.skinName);
+  report.labelMap = sources.labelMapNote;
   // Written beside its place and renamed into it: a folder with case.json is always complete.
   const fs::path tmp = out.parent_path() / ("." + out.filename().string() + ".importing-" + std::to_string(::getpid()));
   fs::remove_all(tmp);
   fs::create_directories(tmp);
   try {
-    writeFolder(named, std::move(skin), tmp, report.scale, report);
+    writeFolder(named, std::move(sources), tmp, report.scale, report);
     fs::rename(tmp, out);
   } catch (...) {
     std::error_code ignored;

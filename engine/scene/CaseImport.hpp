@@ -1,7 +1,8 @@
 #pragma once
 // A surgeon's own patient as a case (issue 20): the segmented skin, skull (with the maxilla) and
-// mandible exported from 3D Slicer, Mimics or ITK-SNAP as STL, OBJ or PLY, optional air cavities,
-// texture and landmarks, and the osteotomy templates to cut. Every file is checked (units, closed,
+// mandible exported from 3D Slicer, Mimics or ITK-SNAP as STL, OBJ or PLY surfaces, or one label map
+// (NIfTI, NRRD) with the label numbers of each (mesh/LabelMapSurfaces makes the surfaces), optional
+// air cavities, texture and landmarks, and the osteotomy templates to cut. Every file is checked (units, closed,
 // manifold, self-intersection, bones inside the skin) and every problem comes back naming the file
 // and what is wrong; the case folder is written complete or not at all.
 #include <Eigen/Core>
@@ -13,9 +14,14 @@
 namespace orthosim {
 
 struct CaseImportInput {
-  std::string skin;                   // closed envelope of the soft tissue
-  std::string skull;                  // skull with the maxilla: held fixed, cut by the maxilla's templates
-  std::string mandible;               // moved as a whole or cut by the mandible's templates
+  std::string skin;      // closed envelope of the soft tissue
+  std::string skull;     // skull with the maxilla: held fixed, cut by the maxilla's templates
+  std::string mandible;  // moved as a whole or cut by the mandible's templates
+  // Or, instead of the three surfaces: one label map (.nii, .nii.gz, .nrrd, .nhdr) and the labels of
+  // the soft tissue, the skull and the mandible in it. The skin is the outer boundary of all three
+  // together; the surfaces are in the map's patient frame, LPS mm (mesh/LabelMapSurfaces.hpp).
+  std::string labelMap;
+  std::vector<int> tissueLabels, skullLabels, mandibleLabels;
   std::vector<std::string> cavities;  // closed air spaces inside the skin (e.g. the oral cavity)
   std::string texture;                // image for the skin's texture coordinates (optional)
   std::string landmarks;              // JSON {name: [x, y, z]} (or grouped under hard/soft), same units
@@ -23,7 +29,8 @@ struct CaseImportInput {
   std::string units = "auto";         // "mm", "m", or "auto": mm, refusing sizes that look like metres
   std::string name;                   // the case's name (default: the folder's)
   // The anatomical frame; default: from the landmarks' Frankfort horizontal when they have it
-  // (scene/LandmarkFrame), else the case format's (anterior -x, superior +z).
+  // (scene/LandmarkFrame), else the case format's (anterior -x, superior +z), or for a label map
+  // its patient frame's (LPS: anterior -y, superior +z).
   std::optional<Eigen::Vector3d> anterior, superior;
 };
 
@@ -31,6 +38,7 @@ struct CaseImportReport {
   std::string caseFile;               // <outDir>/case.json
   double scale = 1.0;                 // applied to every coordinate (1000 for metres)
   std::string frame;                  // where the anatomical frame came from, for the user
+  std::string labelMap;               // from a label map: its voxels, their placement, the surfaces made
   std::vector<std::string> warnings;  // repairs made and defects accepted, "<file>: ..."
 };
 

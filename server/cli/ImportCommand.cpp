@@ -1,6 +1,7 @@
 // `orthosim import --skin S --skull K --mandible M [--cavity C]... [--texture T] [--landmarks L]
 // [--cuts le_fort_1,bsso] [--units auto|mm|m] [--name N] --out DIR`: a patient's segmented surfaces
-// as a case folder (scene/CaseImport), checked file by file.
+// as a case folder (scene/CaseImport), checked file by file. `--label-map F --tissue-labels 1
+// --skull-labels 2 --mandible-labels 3` takes one label map instead of the three surfaces.
 #include <iostream>
 
 #include "cli/Commands.hpp"
@@ -11,6 +12,7 @@ namespace orthosim::cli {
 int runImport(const CaseImportInput& input, const std::string& outDir) {
   try {
     const CaseImportReport report = importCase(input, outDir);
+    if (!report.labelMap.empty()) std::cout << report.labelMap << "\n";
     for (const std::string& w : report.warnings) std::cout << "warning: " << w << "\n";
     if (report.scale != 1.0) std::cout << "coordinates scaled by " << report.scale << " to millimetres\n";
     std::cout << "anatomical frame: " << report.frame << "\n";
