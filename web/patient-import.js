@@ -16,6 +16,8 @@ function patientForm() {
   const cuts = data.getAll("cut");
   data.delete("cut");
   data.set("cuts", cuts.join(","));
+  // Fields left empty are not sent: a label map's numbers only with a label map.
+  for (const key of ["tissue_labels", "skull_labels", "mandible_labels"]) if (!data.get(key)) data.delete(key);
   return data;
 }
 

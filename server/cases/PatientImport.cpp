@@ -16,17 +16,19 @@ namespace {
 // The file name endings each field takes (lower case).
 const std::map<std::string, std::vector<std::string>>& fieldEndings() {
   static const std::map<std::string, std::vector<std::string>> endings = {
-      {"skin", {".stl", ".obj", ".ply"}},     {"skull", {".stl", ".obj", ".ply"}},
-      {"mandible", {".stl", ".obj", ".ply"}}, {"cavity", {".stl", ".obj", ".ply"}},
-      {"texture", {".png", ".jpg", ".jpeg"}}, {"landmarks", {".json"}}};
+      {"skin", {".stl", ".obj", ".ply"}},
+      {"skull", {".stl", ".obj", ".ply"}},
+      {"mandible", {".stl", ".obj", ".ply"}},
+      {"label_map", {".nii", ".nii.gz", ".nrrd"}},  // one file: a detached .nhdr header would need two
+      {"cavity", {".stl", ".obj", ".ply"}},
+      {"texture", {".png", ".jpg", ".jpeg"}},
+      {"landmarks", {".json"}}};
   return endings;
 }
 
-std::string lowerEnding(const std::string& name) {
-  const std::size_t dot = name.rfind('.');
-  std::string e = dot == std::string::npos ? "" : name.substr(dot);
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
-  return e;
+bool endsWith(std::string name, const std::string& ending) {
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  return name.size() > ending.size() && name.compare(name.size() - ending.size(), ending.size(), ending) == 0;
 }
 
 // A file name is stored as given, so it must be a plain name: no path, nothing hidden.
@@ -44,7 +46,7 @@ void checkFileName(const UploadedFile& f) {
     if (!(std::isalnum(c) || c == '.' || c == '_' || c == '-' || c == ' ' || c == '(' || c == ')' || c == '+'))
       fail("has a character other than letters, digits, space and . _ - ( ) +");
   const std::vector<std::string>& endings = fieldEndings().at(f.field);
-  if (std::find(endings.begin(), endings.end(), lowerEnding(n)) == endings.end()) {
+  if (std::none_of(endings.begin(), endings.end(), [&](const std::string& e) { return endsWith(n, e); })) {
     std::string list;
     for (const std::string& e : endings) list += (list.empty() ? "" : ", ") + e;
     fail("is not one of " + list);
@@ -65,7 +67,7 @@ void checkUpload(const PatientUpload& u, const CaseLibrary& cases, const fs::pat
     if (!isUploadField(f.field))
       throw PatientImportError("bad_field", f.field,
                                f.field +
-                                   ": no such file field (skin, skull, mandible, cavity, "
+                                   ": no such file field (skin, skull, mandible, label_map, cavity, "
                                    "texture, landmarks)");
     checkFileName(f);
     std::string key = f.fileName;
@@ -78,11 +80,29 @@ void checkUpload(const PatientUpload& u, const CaseLibrary& cases, const fs::pat
       throw PatientImportError("bad_file", f.field, f.field + ": more than one file; send one");
     if (f.data.empty()) throw PatientImportError("bad_file", f.field, f.fileName + ": the file is empty");
   }
+  if (count.count("label_map")) {
+    for (const char* surface : {"skin", "skull", "mandible"})
+      if (count.count(surface))
+        throw PatientImportError("bad_file", surface,
+                                 std::string(surface) + ": send either a label map or the three surfaces, not both");
+    for (const auto& [labels, field] : {std::pair{&u.tissueLabels, "tissue_labels"},
+                                        {&u.skullLabels, "skull_labels"},
+                                        {&u.mandibleLabels, "mandible_labels"}})
+      if (labels->empty())
+        throw PatientImportError("bad_field", field,
+                                 std::string(field) + ": the label map's label number(s) for this tissue are needed");
+    return;
+  }
+  for (const auto& [labels, field] : {std::pair{&u.tissueLabels, "tissue_labels"},
+                                      {&u.skullLabels, "skull_labels"},
+                                      {&u.mandibleLabels, "mandible_labels"}})
+    if (!labels->empty())
+      throw PatientImportError("bad_field", field, std::string(field) + ": label numbers need a label map");
   for (const char* needed : {"skin", "skull", "mandible"})
     if (!count.count(needed))
-      throw PatientImportError(
-          "missing_file", needed,
-          std::string(needed) + ": no file; the " + needed + " surface is needed (STL, OBJ or PLY)");
+      throw PatientImportError("missing_file", needed,
+                               std::string(needed) + ": no file; the " + needed +
+                                   " surface is needed (STL, OBJ or PLY), or a label map instead of the three");
 }
 
 // Messages of the engine's importer name files by their staged paths: show the user's names.
@@ -118,6 +138,9 @@ ImportedPatient PatientImporter::import(const PatientUpload& upload) {
   input.units = upload.units;
   input.cuts = upload.cuts;
   input.name = upload.name.empty() ? upload.id : upload.name;
+  input.tissueLabels = upload.tissueLabels;
+  input.skullLabels = upload.skullLabels;
+  input.mandibleLabels = upload.mandibleLabels;
   for (const UploadedFile& f : upload.files) {
     const fs::path file = staging.path / f.fileName;
     std::ofstream(file, std::ios::binary).write(f.data.data(), static_cast<std::streamsize>(f.data.size()));
@@ -126,6 +149,7 @@ ImportedPatient PatientImporter::import(const PatientUpload& upload) {
     if (f.field == "skin") input.skin = file.string();
     if (f.field == "skull") input.skull = file.string();
     if (f.field == "mandible") input.mandible = file.string();
+    if (f.field == "label_map") input.labelMap = file.string();
     if (f.field == "cavity") input.cavities.push_back(file.string());
     if (f.field == "texture") input.texture = file.string();
     if (f.field == "landmarks") input.landmarks = file.string();

@@ -16,7 +16,7 @@
 namespace orthosim::server {
 
 struct UploadedFile {
-  std::string field;     // skin, skull, mandible, cavity, texture or landmarks
+  std::string field;     // skin, skull, mandible, label_map, cavity, texture or landmarks
   std::string fileName;  // as the user's machine named it
   std::string data;
 };
@@ -27,6 +27,8 @@ struct PatientUpload {
   std::string units = "auto";     // mm, m, or auto (mm, refusing sizes that look like metres)
   std::vector<std::string> cuts;  // osteotomy templates
   std::vector<UploadedFile> files;
+  // With a label_map file instead of the three surfaces: the labels of each tissue in it.
+  std::vector<int> tissueLabels, skullLabels, mandibleLabels;
 };
 
 struct ImportedPatient {

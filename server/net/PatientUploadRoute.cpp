@@ -35,6 +35,25 @@ std::vector<std::string> commaList(const std::string& s) {
   return out;
 }
 
+// "1, 4" -> {1, 4}: label numbers of a label map, each 1..65535.
+std::vector<int> labelNumbers(const std::string& field, const std::string& text) {
+  std::vector<int> out;
+  for (const std::string& item : commaList(text)) {
+    std::size_t used = 0;
+    int value = 0;
+    try {
+      value = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || value < 1 || value > 65535)
+      throw server::PatientImportError("bad_field", field,
+                                       field + ": '" + item + "' is not a label number (1 to 65535)");
+    out.push_back(value);
+  }
+  return out;
+}
+
 }  // namespace
 
 bool isPatientUpload(const Request& request) {
@@ -61,11 +80,16 @@ server::PatientUpload patientUploadFromForm(const std::vector<FormPart>& parts) 
       upload.units = p.data;
     } else if (p.name == "cuts") {
       for (const std::string& cut : commaList(p.data)) upload.cuts.push_back(cut);
+    } else if (p.name == "tissue_labels" || p.name == "skull_labels" || p.name == "mandible_labels") {
+      std::vector<int>& labels = p.name == "tissue_labels"  ? upload.tissueLabels
+                                 : p.name == "skull_labels" ? upload.skullLabels
+                                                            : upload.mandibleLabels;
+      labels = labelNumbers(p.name, p.data);
     } else {
       throw PatientImportError("bad_field", p.name,
                                p.name +
-                                   ": no such field (id, name, units, cuts, skin, skull, mandible, cavity, "
-                                   "texture, landmarks)");
+                                   ": no such field (id, name, units, cuts, skin, skull, mandible, label_map, "
+                                   "tissue_labels, skull_labels, mandible_labels, cavity, texture, landmarks)");
     }
   }
   // A browser sends an empty part for a file input left empty: that is no file.

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "HttpTestClient.hpp"
+#include "LabelMapFiles.hpp"
 #include "ServerProcess.hpp"
 #include "WsTestClient.hpp"
 #include "phantom/PhantomCase.hpp"
@@ -226,6 +227,50 @@ TEST_F(PatientUpload, EachBadUploadGetsItsOwnErrorAndLeavesNothing) {
 
   EXPECT_EQ(caseIds(server.port()).size(), 6u);  // the built-in cases only
   EXPECT_EQ(test::httpGet(server.port(), "/api/health").result(), http::status::ok);
+}
+
+// A label map instead of the surfaces reaches the engine's label-map import: a map without the
+// mandible's label is refused naming the user's file and the label; the fields are checked first.
+TEST_F(PatientUpload, ALabelMapIsImportedWithItsLabelNumbers) {
+  test::LabelGrid grid;  // a 20 mm box of soft tissue (1) holding a 10 mm box of skull (2)
+  grid.spacing = 1.0;
+  grid.n = {20, 20, 20};
+  grid.labels.assign(8000, 0);
+  for (int k = 2; k < 18; ++k)
+    for (int j = 2; j < 18; ++j)
+      for (int i = 2; i < 18; ++i)
+        grid.labels[i + 20 * (j + 20 * k)] = (i > 5 && i < 14 && j > 5 && j < 14 && k > 5 && k < 14) ? 2 : 1;
+  const fs::path map = data_.string() + "-head.nii.gz";
+  test::writeNiftiLabels(grid, map.string());
+  const std::string bytes = readFile(map);
+  fs::remove(map);
+  test::ServerProcess server(serverArgs());
+  auto labelled = [&](const std::string& tissue, const std::string& skull, const std::string& mandible) {
+    return std::vector<Part>{{"id", "", "from-labels"},
+                             {"label_map", "head.nii.gz", bytes},
+                             {"tissue_labels", "", tissue},
+                             {"skull_labels", "", skull},
+                             {"mandible_labels", "", mandible}};
+  };
+  const test::HttpReply missing = upload(server.port(), labelled("1", "2", "3"));
+  EXPECT_EQ(missing.result(), http::status::bad_request) << missing.body();
+  const json error = json::parse(missing.body());
+  EXPECT_EQ(error["error"], "import_failed");
+  const std::string message = error["message"];
+  EXPECT_NE(message.find("head.nii.gz"), std::string::npos) << message;
+  EXPECT_NE(message.find("label 3"), std::string::npos) << message;
+  EXPECT_EQ(message.find(data_.string()), std::string::npos) << message;
+
+  const test::HttpReply badNumber = upload(server.port(), labelled("1", "two", "3"));
+  EXPECT_EQ(json::parse(badNumber.body())["field"], "skull_labels") << badNumber.body();
+  const test::HttpReply noLabels = upload(server.port(), labelled("1", "2", ""));
+  EXPECT_EQ(json::parse(noLabels.body())["field"], "mandible_labels") << noLabels.body();
+  std::vector<Part> both = labelled("1", "2", "3");
+  both.push_back(file("skin", "skin.obj"));
+  const test::HttpReply twice = upload(server.port(), both);
+  EXPECT_NE(json::parse(twice.body())["message"].get<std::string>().find("not both"), std::string::npos)
+      << twice.body();
+  EXPECT_TRUE(importsOnDisk().empty());
 }
 
 }  // namespace
