@@ -127,6 +127,13 @@ std::shared_ptr<const T> CaseLibrary::once(std::map<Key, std::shared_future<std:
   return future.get();
 }
 
+void CaseLibrary::invalidate(const std::string& id) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  models_.erase({id, Resolution::Coarse});
+  models_.erase({id, Resolution::Fine});
+  prototypes_.erase(id);
+}
+
 std::shared_ptr<const CaseModel> CaseLibrary::model(const std::string& id, Resolution resolution) {
   const std::optional<CaseEntry> entry = find(id);
   if (!entry) throw std::invalid_argument("unknown case '" + id + "'");

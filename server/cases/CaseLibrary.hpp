@@ -27,6 +27,9 @@ class CaseLibrary {
   std::optional<CaseEntry> find(const std::string& id) const;
   // Adds a case; throws std::invalid_argument when its id is taken.
   void add(CaseEntry entry);
+  // Forgets the built models of a case whose file changed (an edit): the next model() builds it
+  // again. Sessions holding the old models keep them until they let go.
+  void invalidate(const std::string& id);
 
   // Blocks until the model is built (or built by another caller); a failed build is not kept,
   // so a later call tries again. Throws std::invalid_argument for an unknown id, otherwise what

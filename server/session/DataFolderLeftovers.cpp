@@ -17,8 +17,12 @@ std::vector<std::string> removeLeftovers(const fs::path& dataDir) {
     for (const fs::directory_entry& e : fs::directory_iterator(dataDir / "cases", ec))
       if (isUnfinishedCase(e.path())) found.push_back(e.path());
   if (fs::is_directory(dataDir / "patients", ec))
-    for (const fs::directory_entry& e : fs::directory_iterator(dataDir / "patients", ec))
+    for (const fs::directory_entry& e : fs::directory_iterator(dataDir / "patients", ec)) {
       if (isUnfinishedImport(e.path())) found.push_back(e.path());
+      if (e.is_directory(ec))  // an edit of the patient's case file cut off before its rename
+        for (const fs::directory_entry& f : fs::directory_iterator(e.path(), ec))
+          if (f.path().filename().string().rfind(".case.json.editing-", 0) == 0) found.push_back(f.path());
+    }
   if (fs::is_directory(dataDir / "imports", ec))  // uploads staged for an import, all unfinished
     for (const fs::directory_entry& e : fs::directory_iterator(dataDir / "imports", ec)) found.push_back(e.path());
   if (fs::is_directory(dataDir / "plans", ec))

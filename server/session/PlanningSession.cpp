@@ -206,7 +206,8 @@ void PlanningSession::dispatch(const std::string& type, MessageReader& r, const 
                                                           {"load_plan", &PlanningSession::loadPlan},
                                                           {"export", &PlanningSession::exportSkin},
                                                           {"view", &PlanningSession::view},
-                                                          {"pick", &PlanningSession::pick}};
+                                                          {"pick", &PlanningSession::pick},
+                                                          {"edit_case", &PlanningSession::editCase}};
   auto it = handlers.find(type);
   if (it == handlers.end()) {
     std::string known;
@@ -230,6 +231,10 @@ void PlanningSession::open(MessageReader& r, const json& id) {
   r.rejectUnknown();
   if (!service_.cases().find(caseId))
     throw ProtocolError("unknown_case", "/case: no case '" + caseId + "'; list_cases names the cases", "/case");
+  startOpening(caseId, id);
+}
+
+void PlanningSession::startOpening(const std::string& caseId, const json& id) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     opening_ = caseId;
@@ -240,10 +245,17 @@ void PlanningSession::open(MessageReader& r, const json& id) {
       [self, caseId, id](const std::atomic<bool>& cancel) {
         const auto t0 = std::chrono::steady_clock::now();
         auto c = std::make_shared<OpenCase>();
+        // Phases as the fine job names them: the tissue mesh (built, or read from the cache), then
+        // the solver model (pattern, analysis, rest factorisation).
+        auto progress = [&](const char* phase, double fraction) {
+          self->reply({{"type", "open_progress"}, {"case", caseId}, {"phase", phase}, {"fraction", fraction}}, id);
+        };
         try {
           c->id = caseId;
+          progress("mesh", 0.0);
           c->coarse = self->service_.cases().model(caseId, Resolution::Coarse);
           if (cancel) return;
+          progress("model", 0.6);
           c->fragments = movableFragments(*c->coarse);
           c->probe = SkinFigureProbe(*c->coarse);
           c->lips = lipVertices(*c->coarse);
@@ -286,8 +298,12 @@ json PlanningSession::caseJson(const OpenCase& c) const {
                          {"pose", poseToJson(it == poses_.end() ? AnatomicalPose{} : it->second)}});
   }
   json cuts = osteotomySetJson(m.spec.cuts);
-  json landmarks = json::array();
-  for (const auto& [name, p] : m.spec.landmarks) landmarks.push_back(name);
+  json landmarks = json::array(), landmarkPositions = json::object();
+  for (const auto& [name, p] : m.spec.landmarks) {
+    landmarks.push_back(name);
+    landmarkPositions[name] = vec(p);
+  }
+  const std::optional<CaseEntry> entry = service_.cases().find(c.id);
   const AnatomicalFrame& f = m.spec.frame;
   return {{"case", c.id},
           {"name", m.spec.name},
@@ -296,12 +312,16 @@ json PlanningSession::caseJson(const OpenCase& c) const {
           {"cuts", std::move(cuts)},
           {"templates", osteotomyTemplates()},
           {"landmarks", std::move(landmarks)},
+          {"landmarks_mm", std::move(landmarkPositions)},
+          {"editable", entry && entry->source == "import"},
           {"coarse",
            {{"nodes", m.scene.mesh.numNodes()},
             {"tetrahedra", m.scene.mesh.numTets()},
             {"boundary_triangles", m.tissue.quality.boundaryFaces},
             {"display_skin_triangles", m.tissue.skin.numTriangles()}}}};
 }
+
+std::string PlanningSession::openCaseId() const { return requireOpen()->id; }
 
 std::shared_ptr<PlanningSession::OpenCase> PlanningSession::requireOpen() const {
   const std::lock_guard<std::mutex> lock(mutex_);

@@ -46,6 +46,12 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   void dispatch(const std::string& type, MessageReader& r, const nlohmann::json& id);
   void listCases(MessageReader& r, const nlohmann::json& id);
   void open(MessageReader& r, const nlohmann::json& id);
+  // Replies "opening", then builds (or takes the built) models on the session's work queue with
+  // "open_progress", then "opened".
+  void startOpening(const std::string& caseId, const nlohmann::json& id);
+  // An imported patient's landmarks and osteotomies changed (session/CaseEditMessage.cpp).
+  void editCase(MessageReader& r, const nlohmann::json& id);
+  std::string openCaseId() const;  // throws case_not_open as requireOpen does
   void describe(MessageReader& r, const nlohmann::json& id);
   void setPoses(MessageReader& r, const nlohmann::json& id);
   void reset(MessageReader& r, const nlohmann::json& id);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -227,6 +228,63 @@ TEST_F(PatientUpload, EachBadUploadGetsItsOwnErrorAndLeavesNothing) {
 
   EXPECT_EQ(caseIds(server.port()).size(), 6u);  // the built-in cases only
   EXPECT_EQ(test::httpGet(server.port(), "/api/health").result(), http::status::ok);
+}
+
+// Points 2 and 3 of issue 20 on an imported patient: a landmark moved and the Le Fort I shifted
+// 2 mm up rewrite the case, which opens again with its models rebuilt and progress on the way; a
+// refused edit leaves the case file as it was; built-in cases cannot be edited; the edit stays.
+TEST_F(PatientUpload, EditingLandmarksAndCutsRebuildsTheCaseWithProgress) {
+  std::array<double, 3> nasion{};
+  {
+    test::ServerProcess server(serverArgs());
+    ASSERT_EQ(upload(server.port(), phantomParts("edit-me")).result(), http::status::created);
+    test::WsTestClient ws(server.port());
+    ws.request({{"type", "open"}, {"case", "edit-me"}});
+    const json opened = ws.waitFor("opened", 180s);
+    EXPECT_TRUE(opened["editable"].get<bool>());
+    const std::vector<double> n = opened["landmarks_mm"]["nasion"];
+    nasion = {n[0], n[1], n[2] + 1.0};
+    const std::string before = readFile(data_ / "patients" / "edit-me" / "case.json");
+
+    // Refused: an unknown template. The case file is untouched.
+    const json refused = ws.request({{"type", "edit_case"}, {"cuts", {{{"kind", "le_fort_3"}}}}});
+    EXPECT_EQ(refused["type"], "error") << refused.dump();
+    EXPECT_EQ(refused["error"], "edit_failed");
+    EXPECT_NE(refused["message"].get<std::string>().find("le_fort_3"), std::string::npos) << refused.dump();
+    EXPECT_EQ(readFile(data_ / "patients" / "edit-me" / "case.json"), before);
+
+    // Accepted: nasion 1 mm up, Le Fort I 2 mm above its default level (4 mm), BSSO kept.
+    ws.send({{"type", "edit_case"},
+             {"landmarks", {{"nasion", {nasion[0], nasion[1], nasion[2]}}}},
+             {"cuts", {{{"kind", "le_fort_1"}, {"offset_mm", 6.0}}, {{"kind", "bsso"}}}}});
+    ws.waitFor("case_edited", 60s);
+    std::vector<std::string> phases;
+    const json reopened = ws.waitFor(
+        [&](const json& m) {
+          if (m["type"] == "open_progress") phases.push_back(m["phase"]);
+          return m["type"] == "opened";
+        },
+        180s);
+    EXPECT_EQ(phases, (std::vector<std::string>{"mesh", "model"}));
+    EXPECT_EQ(reopened["cuts"][0]["offset_mm"], 6.0) << reopened["cuts"].dump();
+    EXPECT_EQ(reopened["cuts"][1]["kind"], "bsso");
+    EXPECT_NEAR(reopened["landmarks_mm"]["nasion"][2].get<double>(), nasion[2], 1e-9);
+    ws.request({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 2.0}}}}}});
+    const json preview = ws.waitFor("preview", 120s);
+    EXPECT_TRUE(preview["figures"]["converged"].get<bool>()) << preview.dump();
+
+    test::WsTestClient builtIn(server.port());
+    builtIn.request({{"type", "open"}, {"case", "phantom-0"}});
+    builtIn.waitFor("opened", 180s);
+    const json readOnly = builtIn.request({{"type", "edit_case"}, {"cuts", json::array()}});
+    EXPECT_EQ(readOnly["error"], "read_only_case") << readOnly.dump();
+  }
+  test::ServerProcess restarted(serverArgs());
+  test::WsTestClient ws(restarted.port());
+  ws.request({{"type", "open"}, {"case", "edit-me"}});
+  const json opened = ws.waitFor("opened", 180s);
+  EXPECT_EQ(opened["cuts"][0]["offset_mm"], 6.0) << "the edit stays";
+  EXPECT_NEAR(opened["landmarks_mm"]["nasion"][2].get<double>(), nasion[2], 1e-9);
 }
 
 // A label map instead of the surfaces reaches the engine's label-map import: a map without the

@@ -1,0 +1,74 @@
+#include "cases/CaseEdit.hpp"
+
+#include <unistd.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "scene/CaseFile.hpp"
+#include "scene/CaseImport.hpp"
+
+namespace orthosim::server {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json cutJson(const CutChoice& c) {
+  json cut = {{"template", c.kind}, {"bone", boneOfTemplate(c.kind)}};
+  if (c.offsetMm >= 0) cut["offset_mm"] = c.offsetMm;
+  if (!c.side.empty()) cut["side"] = c.side;
+  return cut;
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  out.close();
+  if (!out) throw CaseEditError("cannot write " + path.filename().string() + " in " + path.parent_path().string());
+}
+
+}  // namespace
+
+void applyCaseEdit(const fs::path& caseFile, const CaseEdit& edit) {
+  json root;
+  try {
+    std::ifstream in(caseFile);
+    root = json::parse(in);
+  } catch (const std::exception& e) {
+    throw CaseEditError("cannot read " + caseFile.string() + ": " + e.what());
+  }
+  // The landmarks go inline, all of them: one file, renamed into place, holds the whole edit.
+  Landmarks landmarks = loadCaseFile(caseFile.string()).landmarks;
+  for (const auto& [name, p] : edit.landmarks) {
+    if (!p.allFinite() || p.norm() > 1000) throw CaseEditError("landmarks." + name + ": not a point of the head (mm)");
+    landmarks[name] = p;
+  }
+  json inline_ = json::object();
+  for (const auto& [name, p] : landmarks) inline_[name] = {p.x(), p.y(), p.z()};
+  root["landmarks"] = inline_;
+  if (edit.cuts) {
+    json cuts = json::array();
+    try {
+      for (const CutChoice& c : *edit.cuts) cuts.push_back(cutJson(c));
+    } catch (const CaseImportError& e) {
+      throw CaseEditError(e.what());
+    }
+    root["cuts"] = cuts;
+  }
+  const fs::path tmp = caseFile.parent_path() / (".case.json.editing-" + std::to_string(::getpid()));
+  writeText(tmp, root.dump(2) + "\n");
+  try {
+    loadCaseFile(tmp.string());  // every cut placed from its landmarks, or the reason why not
+  } catch (const std::exception& e) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    std::string why = e.what();
+    const std::string prefix = tmp.string() + ": ";
+    if (why.rfind(prefix, 0) == 0) why = why.substr(prefix.size());
+    throw CaseEditError(why);
+  }
+  fs::rename(tmp, caseFile);  // atomic: a reader sees the old case or the new one
+}
+
+}  // namespace orthosim::server
