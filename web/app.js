@@ -81,7 +81,9 @@ const handlers = {
     if (next) { select.value = next; openCase(next); }
   },
   opening: (m) => say(`opening ${m.case}…`),
-  opened: (m) => onOpened(m),
+  opened: (m) => { onOpened(m); showCaseEditor(m); },
+  open_progress: (m) => onOpenProgress(m),
+  case_edited: (m) => say(`case ${m.case} changed; rebuilding it`),
   case: () => {},
   poses: (m) => showWarnings(m.warnings || []),
   loaded: (m) => { state.poses = m.poses; renderFragments(); say(`plan "${m.name}" loaded`); },
@@ -109,7 +111,7 @@ const handlers = {
     a.textContent = `download ${m.file_name} (${(m.bytes / 1e6).toFixed(1)} MB)`;
     a.hidden = false;
   },
-  picked: (m) => onPicked(m),
+  picked: (m) => { if (!placeLandmark(m)) onPicked(m); },
   frame: (m) => {
     state.frameSize = [m.width, m.height];
     const now = performance.now();
@@ -119,6 +121,7 @@ const handlers = {
   },
   error: (m) => {
     if (m.error === "unknown_type" && /view/.test(m.message)) return;  // a server without rendering
+    if (m.error === "edit_failed") onEditFailed(m);
     say(m.message, "error");
   },
 };

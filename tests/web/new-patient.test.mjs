@@ -1,14 +1,15 @@
 // Browser test of "New patient" (issue 20, point 1): the phantom's own surfaces, written by
 // `orthosim phantom`, are uploaded through the page's form; a bad file is refused with its name,
 // then the good set becomes a case that opens, moving its Le Fort I maxilla gives a converged
-// preview, and a click on the face picks the skin. Runs on its own data folder, so the shared one never holds the imported patient.
+// preview, a click on the face picks the skin; then three landmarks are placed by clicking the
+// face, the Le Fort I is shifted 2 mm up, the case is rebuilt with its progress shown and previews. Runs on its own data folder, so the shared one never holds the imported patient.
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
-import { copyFileSync, mkdtempSync, rmSync, writeFileSync } from "node:fs";
+import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
-import { cli, withPage } from "./harness.mjs";
+import { artifacts, cli, withPage } from "./harness.mjs";
 
 test("new patient: upload surfaces, refusal named, case opens and previews", { timeout: 400000 }, async () => {
   const work = mkdtempSync(path.join(tmpdir(), "orthosim-new-patient-"));
@@ -62,6 +63,40 @@ test("new patient: upload surfaces, refusal named, case opens and previews", { t
       const box = await page.locator("#frame-box").boundingBox();
       await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2);
       await page.waitForFunction(() => /picked skin at/.test(document.querySelector("#pick-info").textContent), null, { timeout: 30000 });
+
+      // Three landmarks placed by clicking the face, the Le Fort I shifted 2 mm up, the case rebuilt
+      // with its progress shown, then a preview on the rebuilt case.
+      assert.equal(await page.locator("#case-editor").isHidden(), false, "an imported patient is editable");
+      const clicks = [["pronasale", 0], ["subnasale", 12], ["labrale_superius", 24]];
+      for (const [name, dy] of clicks) {
+        await page.click(`#landmark-table button[data-landmark="${name}"]`);
+        await page.locator("#frame-box").scrollIntoViewIfNeeded();  // clicking the button may scroll the page
+        const at = await page.locator("#frame-box").boundingBox();
+        await page.mouse.click(at.x + at.width / 2, at.y + at.height / 2 + dy);
+        await page.waitForFunction((n) => [...document.querySelectorAll("#landmark-table tr")]
+          .some((r) => r.textContent.startsWith(`${n} (new place)`)), name, { timeout: 30000 })
+          .catch(async (e) => {
+            console.log("edit-status:", await page.locator("#edit-status").textContent(), "| pick-info:",
+              await page.locator("#pick-info").textContent(), "| messages:", await page.locator("#messages").textContent());
+            throw e;
+          });
+      }
+      const offset = page.locator('input[aria-label="le_fort_1 offset"]');
+      assert.equal(Number(await offset.inputValue()), 4, "the Le Fort I at its default level");
+      await offset.fill("6");
+      const progressSeen = page.waitForFunction(() => !document.querySelector("#rebuild-progress").hidden, null, { timeout: 60000 });
+      await page.click("#apply-edit");
+      await progressSeen;
+      await page.waitForFunction(() => /case rebuilt/.test(document.querySelector("#edit-status").textContent), null, { timeout: 180000 });
+      assert.equal(Number(await offset.inputValue()), 6, "the rebuilt case has the shifted Le Fort I");
+      assert.equal(await page.locator("#landmark-table").textContent().then((t) => /new place/.test(t)), false);
+      await slider.waitFor({ timeout: 60000 });
+      await slider.focus();
+      for (let i = 0; i < 2; i++) await page.keyboard.press("ArrowRight");
+      await page.waitForFunction(() => document.querySelector("#solve-state").dataset.state === "converged" &&
+        /upper lip/.test(document.querySelector("#preview-figures").textContent), null, { timeout: 120000 });
+      mkdirSync(artifacts, { recursive: true });
+      await page.screenshot({ path: path.join(artifacts, "new-patient.png"), fullPage: true });
       assert.deepEqual(pageErrors, [], "no script errors on the page");
     }, { dataDir: path.join(work, "data") });
   } finally {

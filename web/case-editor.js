@@ -1,0 +1,115 @@
+// "Landmarks and osteotomies" of an imported patient (docs/protocol.md, edit_case): landmarks are
+// placed by clicking the face (the server picks the skin under the pixel and answers with its rest
+// position), osteotomy templates are chosen and their levels shifted, and Apply sends the changes;
+// the server rewrites the case and opens it again, with its progress shown.
+"use strict";
+
+const TEMPLATES = [
+  { kind: "le_fort_1", label: "Le Fort I", offset: 4, hint: "mm above the upper incisor apex" },
+  { kind: "le_fort_2", label: "Le Fort II", offset: 8, hint: "mm below nasion" },
+  { kind: "segmented_maxilla", label: "segmented maxilla", offset: 4, hint: "mm above the upper incisor apex" },
+  { kind: "bsso", label: "BSSO", offset: 12, hint: "mm behind the lower first molars" },
+  { kind: "genioplasty", label: "genioplasty", offset: 5, hint: "mm below the mental foramina" },
+];
+const editor = { landmarks: {}, pending: {}, placing: null, cuts: [] };
+
+function showCaseEditor(m) {
+  const rebuilt = !$("rebuild-progress").hidden;
+  $("case-editor").hidden = !m.editable;
+  $("rebuild-progress").hidden = true;
+  if (!m.editable) return;
+  if (rebuilt) $("edit-status").textContent = `case rebuilt and opened in ${m.seconds.toFixed(1)} s`;
+  editor.landmarks = m.landmarks_mm || {};
+  editor.pending = {};
+  editor.placing = null;
+  editor.cuts = m.cuts || [];
+  renderLandmarks();
+  renderCutEditor();
+}
+
+function renderLandmarks() {
+  const table = $("landmark-table");
+  table.innerHTML = "<tr><th>landmark</th><th>at rest (mm)</th><th></th></tr>";
+  const names = [...new Set([...Object.keys(editor.landmarks), ...Object.keys(editor.pending)])].sort();
+  for (const name of names) {
+    const row = table.insertRow();
+    const p = editor.pending[name] || editor.landmarks[name];
+    row.insertCell().textContent = name + (editor.pending[name] ? " (new place)" : "");
+    row.insertCell().textContent = p.map((v) => v.toFixed(1)).join(", ");
+    const button = document.createElement("button");
+    button.textContent = editor.placing === name ? "click the face…" : "Place";
+    button.dataset.landmark = name;
+    button.onclick = () => startPlacing(name);
+    row.insertCell().append(button);
+  }
+}
+
+function startPlacing(name) {
+  editor.placing = name;
+  renderLandmarks();
+  $("edit-status").textContent = `click the face where ${name} lies`;
+}
+
+// A pick while a landmark is being placed places it; returns whether it took the pick.
+function placeLandmark(m) {
+  if (!editor.placing) return false;
+  if (!m.surface) {
+    $("edit-status").textContent = "nothing under that pixel: click on the face";
+    return true;
+  }
+  editor.pending[editor.placing] = m.rest_mm;
+  $("edit-status").textContent = `${editor.placing} placed; Apply to rebuild the case`;
+  editor.placing = null;
+  renderLandmarks();
+  return true;
+}
+
+function renderCutEditor() {
+  const box = $("cut-editor");
+  box.innerHTML = "";
+  for (const t of TEMPLATES) {
+    const current = editor.cuts.find((c) => c.kind === t.kind);
+    const row = document.createElement("label");
+    row.className = "row";
+    row.innerHTML = `<input type="checkbox" data-kind="${t.kind}" aria-label="cut ${t.kind}"> ${t.label}
+      <input type="number" step="0.5" min="0" max="50" data-offset="${t.kind}" aria-label="${t.kind} offset" style="width: 64px"> ${t.hint}`;
+    row.querySelector("input[type=checkbox]").checked = Boolean(current);
+    row.querySelector("input[type=number]").value = current && current.offset_mm !== undefined ? current.offset_mm : t.offset;
+    box.append(row);
+  }
+}
+
+function applyEdit() {
+  const cuts = [];
+  for (const t of TEMPLATES) {
+    if (!document.querySelector(`#cut-editor input[data-kind="${t.kind}"]`).checked) continue;
+    const offset = Number(document.querySelector(`#cut-editor input[data-offset="${t.kind}"]`).value);
+    cuts.push({ kind: t.kind, offset_mm: offset });
+  }
+  const message = { type: "edit_case", cuts };
+  if (Object.keys(editor.pending).length) message.landmarks = editor.pending;
+  send(message);
+  $("rebuild-progress").hidden = false;
+  $("rebuild-progress").value = 0;
+  $("edit-status").textContent = "rewriting the case…";
+}
+
+function onEditFailed(m) {
+  $("rebuild-progress").hidden = true;
+  $("edit-status").textContent = m.message;
+}
+
+function onOpenProgress(m) {
+  const bar = $("rebuild-progress");
+  bar.value = m.fraction;
+  $("edit-status").textContent = `rebuilding: ${m.phase === "mesh" ? "tissue mesh" : "solver model"}…`;
+  if (!$("case-editor").hidden) bar.hidden = false;
+  say(`opening ${m.case}: ${m.phase}`);
+}
+
+$("apply-edit").onclick = applyEdit;
+$("add-landmark").onclick = () => {
+  const name = $("new-landmark").value.trim();
+  if (!/^[A-Za-z0-9][A-Za-z0-9_-]{0,63}$/.test(name)) return say("landmark names are 1-64 letters, digits, '_' or '-'", "error");
+  startPlacing(name);
+};
