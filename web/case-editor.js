@@ -11,7 +11,7 @@ const TEMPLATES = [
   { kind: "bsso", label: "BSSO", offset: 12, hint: "mm behind the lower first molars" },
   { kind: "genioplasty", label: "genioplasty", offset: 5, hint: "mm below the mental foramina" },
 ];
-const editor = { landmarks: {}, pending: {}, placing: null, cuts: [] };
+const editor = { landmarks: {}, pending: {}, placing: null, cuts: [], needed: {} };
 
 function showCaseEditor(m) {
   const rebuilt = !$("rebuild-progress").hidden;
@@ -23,19 +23,35 @@ function showCaseEditor(m) {
   editor.pending = {};
   editor.placing = null;
   editor.cuts = m.cuts || [];
+  editor.needed = {};
+  for (const n of m.landmarks_needed || []) editor.needed[n.name] = n.by;
+  showFrame(m);
   renderLandmarks();
   renderCutEditor();
 }
 
+function showFrame(m) {
+  const v = (a) => `(${a.map((x) => x.toFixed(2)).join(", ")})`;
+  const f = m.frame;
+  const from = m.frame_from_landmarks
+    ? "from the Frankfort horizontal (porions, orbitale)"
+    : "the files' axes: place porion_left, porion_right and an orbitale to derive it";
+  $("frame-status").textContent = `Anatomical frame: anterior ${v(f.anterior)}, superior ${v(f.superior)}; ${from}.`;
+}
+
+// The needed landmarks first (what the cuts, the frame and the figures read), then the others.
 function renderLandmarks() {
   const table = $("landmark-table");
-  table.innerHTML = "<tr><th>landmark</th><th>at rest (mm)</th><th></th></tr>";
-  const names = [...new Set([...Object.keys(editor.landmarks), ...Object.keys(editor.pending)])].sort();
+  table.innerHTML = "<tr><th>landmark</th><th>needed by</th><th>at rest (mm)</th><th></th></tr>";
+  const all = [...new Set([...Object.keys(editor.needed), ...Object.keys(editor.landmarks), ...Object.keys(editor.pending)])];
+  const names = all.sort((a, b) => (Boolean(editor.needed[b]) - Boolean(editor.needed[a])) || a.localeCompare(b));
   for (const name of names) {
     const row = table.insertRow();
     const p = editor.pending[name] || editor.landmarks[name];
     row.insertCell().textContent = name + (editor.pending[name] ? " (new place)" : "");
-    row.insertCell().textContent = p.map((v) => v.toFixed(1)).join(", ");
+    row.insertCell().textContent = (editor.needed[name] || []).join(", ");
+    row.insertCell().textContent = p ? p.map((v) => v.toFixed(1)).join(", ") : "not placed";
+    if (!p) row.className = "missing";
     const button = document.createElement("button");
     button.textContent = editor.placing === name ? "click the face…" : "Place";
     button.dataset.landmark = name;

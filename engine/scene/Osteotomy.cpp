@@ -1,6 +1,7 @@
 #include "scene/Osteotomy.hpp"
 
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "math/Angles.hpp"
@@ -88,6 +89,22 @@ const std::vector<std::string>& osteotomyTemplates() {
   static const std::vector<std::string> names{"le_fort_1", "le_fort_2", "segmented_maxilla",
                                               "bsso",      "usso",      "genioplasty"};
   return names;
+}
+
+const std::vector<std::string>& osteotomyLandmarks(const std::string& kind) {
+  // Kept with the templates below; OsteotomyTest checks each list against osteotomyRegions.
+  static const std::map<std::string, std::vector<std::string>> needs = {
+      {"le_fort_1", {"PNS", "upper_incisor_apex", "upper_molar_left", "upper_molar_right"}},
+      {"le_fort_2", {"PNS", "nasion", "upper_molar_left", "upper_molar_right"}},
+      {"segmented_maxilla",
+       {"PNS", "upper_canine_left", "upper_canine_right", "upper_incisor_apex", "upper_molar_left",
+        "upper_molar_right"}},
+      {"bsso", {"gonion_left", "gonion_right", "lower_molar_left", "lower_molar_right"}},
+      {"usso", {"gonion_left", "gonion_right", "lower_molar_left", "lower_molar_right"}},
+      {"genioplasty", {"lower_canine_left", "lower_canine_right", "mental_foramen_left", "mental_foramen_right"}}};
+  const auto it = needs.find(kind);
+  if (it == needs.end()) throw std::invalid_argument("unknown osteotomy '" + kind + "'");
+  return it->second;
 }
 
 std::vector<FragmentRegion> osteotomyRegions(const OsteotomySpec& cut, const Landmarks& landmarks,

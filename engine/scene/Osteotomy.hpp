@@ -44,6 +44,11 @@ struct OsteotomySpec {
 // Template names: le_fort_1, le_fort_2, segmented_maxilla, bsso, usso, genioplasty.
 const std::vector<std::string>& osteotomyTemplates();
 
+// The landmarks a template places its cut from (usso: both sides' names, as either may be cut), so
+// that a page can ask for them before the case is cut. Throws std::invalid_argument for an unknown
+// template.
+const std::vector<std::string>& osteotomyLandmarks(const std::string& kind);
+
 // The fragments a cut makes, in order (a later region wins where two overlap). Templates and their
 // landmarks (frame directions A, S, R; offsets in mm):
 //  le_fort_1:  "maxilla": below the plane `offset` (4) above upper_incisor_apex, within 12 mm outside the

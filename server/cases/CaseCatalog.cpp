@@ -43,7 +43,8 @@ std::vector<CaseEntry> folderCases(const fs::path& dir, std::vector<std::string>
     }
     try {
       const CaseSpec spec = loadCaseFile(file.string());  // a broken case is reported now, not at open
-      cases.push_back({id, spec.name.empty() ? id : spec.name, "case folder " + id, "folder", -1, fs::absolute(file)});
+      cases.push_back(
+          {id, spec.name.empty() ? id : spec.name, "case folder " + id, "folder", -1, fs::absolute(file), {}});
     } catch (const std::exception& ex) {
       skip(ex.what());
     }

@@ -7,6 +7,7 @@
 
 #include "scene/CaseFile.hpp"
 #include "scene/CaseImport.hpp"
+#include "scene/LandmarkFrame.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;
@@ -43,6 +44,19 @@ void applyCaseEdit(const fs::path& caseFile, const CaseEdit& edit) {
   for (const auto& [name, p] : edit.landmarks) {
     if (!p.allFinite() || p.norm() > 1000) throw CaseEditError("landmarks." + name + ": not a point of the head (mm)");
     landmarks[name] = p;
+  }
+  // A moved porion or orbitale moves the Frankfort horizontal: the frame follows it.
+  bool frameMoved = false;
+  for (const std::string& name : frankfortLandmarks()) frameMoved = frameMoved || edit.landmarks.count(name);
+  if (frameMoved) {
+    try {
+      if (const std::optional<AnatomicalFrame> f = frameFromLandmarks(landmarks)) {
+        auto vec = [](const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); };
+        root["frame"] = {{"anterior", vec(f->anterior)}, {"superior", vec(f->superior)}, {"right", vec(f->right)}};
+      }
+    } catch (const std::invalid_argument& e) {
+      throw CaseEditError(std::string("frame: ") + e.what());
+    }
   }
   json inline_ = json::object();
   for (const auto& [name, p] : landmarks) inline_[name] = {p.x(), p.y(), p.z()};

@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <sstream>
 
+#include "eval/LandmarkError.hpp"
 #include "eval/SkinFigures.hpp"
 #include "render/SurfaceDifference.hpp"
+#include "scene/LandmarkFrame.hpp"
 #include "scene/Osteotomy.hpp"
 #include "session/DragResponse.hpp"
 #include "session/FineJob.hpp"
@@ -304,6 +307,23 @@ json PlanningSession::caseJson(const OpenCase& c) const {
     landmarkPositions[name] = vec(p);
   }
   const std::optional<CaseEntry> entry = service_.cases().find(c.id);
+  // What the page asks the user to place: each landmark a cut, the frame or the figures need.
+  std::map<std::string, std::vector<std::string>> neededBy;
+  for (const OsteotomySpec& cut : m.spec.cuts)
+    if (cut.kind != "planes")
+      for (const std::string& name : osteotomyLandmarks(cut.kind)) neededBy[name].push_back(cut.kind);
+  for (const std::string& name : frankfortLandmarks()) neededBy[name].push_back("frame");
+  for (const std::string& name : softTissueLandmarkNames()) neededBy[name].push_back("figures");
+  json needed = json::array();
+  for (const auto& [name, by] : neededBy)
+    needed.push_back({{"name", name}, {"by", by}, {"placed", m.spec.landmarks.count(name) > 0}});
+  json landmarkFrame = nullptr;
+  try {
+    if (const std::optional<AnatomicalFrame> lf = frameFromLandmarks(m.spec.landmarks))
+      landmarkFrame = {{"anterior", vec(lf->anterior)}, {"superior", vec(lf->superior)}, {"right", vec(lf->right)}};
+  } catch (const std::invalid_argument&) {
+    // landmarks that give no frame: reported as none; the import said why
+  }
   const AnatomicalFrame& f = m.spec.frame;
   return {{"case", c.id},
           {"name", m.spec.name},
@@ -313,6 +333,8 @@ json PlanningSession::caseJson(const OpenCase& c) const {
           {"templates", osteotomyTemplates()},
           {"landmarks", std::move(landmarks)},
           {"landmarks_mm", std::move(landmarkPositions)},
+          {"landmarks_needed", std::move(needed)},
+          {"frame_from_landmarks", std::move(landmarkFrame)},
           {"editable", entry && entry->source == "import"},
           {"coarse",
            {{"nodes", m.scene.mesh.numNodes()},

@@ -247,5 +247,43 @@ TEST(BoneFragments, AFragmentOfAFragmentInheritsItsParentsBoundsAndNamesAreUniqu
   EXPECT_THROW(splitBoneGroups(rest, {g}, {low}, 0.0), std::invalid_argument);
 }
 
+// osteotomyLandmarks is what the page asks the user to place: each template's list must be exactly
+// what osteotomyRegions reads. With only the listed landmarks every template cuts; without any one
+// of them it refuses, naming it (usso reads one side's molar: either side's cut needs it).
+TEST(Osteotomy, EachTemplateNamesTheLandmarksItIsPlacedFrom) {
+  const AnatomicalFrame frame;
+  for (const std::string& kind : osteotomyTemplates()) {
+    const std::vector<std::string>& needed = osteotomyLandmarks(kind);
+    Landmarks only;
+    for (const std::string& name : needed) only[name] = skullLandmarks().at(name);
+    std::vector<OsteotomySpec> cuts;
+    for (const char* side : {"left", "right"}) {
+      OsteotomySpec cut;
+      cut.kind = kind;
+      cut.bone = "bone";
+      cut.side = side;
+      cuts.push_back(cut);
+      if (kind != "usso") break;
+    }
+    for (const OsteotomySpec& cut : cuts)
+      EXPECT_NO_THROW(osteotomyRegions(cut, only, frame)) << kind << " " << cut.side;
+    for (const std::string& name : needed) {
+      Landmarks without = only;
+      without.erase(name);
+      bool refused = false;
+      for (const OsteotomySpec& cut : cuts) {
+        try {
+          osteotomyRegions(cut, without, frame);
+        } catch (const std::invalid_argument& e) {
+          refused = true;
+          EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+        }
+      }
+      EXPECT_TRUE(refused) << kind << " does not need " << name;
+    }
+  }
+  EXPECT_THROW(osteotomyLandmarks("le_fort_3"), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace orthosim

@@ -242,6 +242,11 @@ TEST_F(PatientUpload, EditingLandmarksAndCutsRebuildsTheCaseWithProgress) {
     ws.request({{"type", "open"}, {"case", "edit-me"}});
     const json opened = ws.waitFor("opened", 180s);
     EXPECT_TRUE(opened["editable"].get<bool>());
+    bool apexNeeded = false;
+    for (const json& n : opened["landmarks_needed"])
+      if (n["name"] == "upper_incisor_apex") apexNeeded = n["placed"].get<bool>() && n["by"][0] == "le_fort_1";
+    EXPECT_TRUE(apexNeeded) << opened["landmarks_needed"].dump();
+    EXPECT_TRUE(opened["frame_from_landmarks"].is_null()) << "the phantom has no porions";
     const std::vector<double> n = opened["landmarks_mm"]["nasion"];
     nasion = {n[0], n[1], n[2] + 1.0};
     const std::string before = readFile(data_ / "patients" / "edit-me" / "case.json");

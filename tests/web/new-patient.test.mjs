@@ -67,6 +67,12 @@ test("new patient: upload surfaces, refusal named, case opens and previews", { t
       // Three landmarks placed by clicking the face, the Le Fort I shifted 2 mm up, the case rebuilt
       // with its progress shown, then a preview on the rebuilt case.
       assert.equal(await page.locator("#case-editor").isHidden(), false, "an imported patient is editable");
+      // The frame is shown with where it comes from (the phantom has no porions: the files' axes),
+      // and the landmarks the cuts need are listed with the cut that needs them.
+      assert.match(await page.locator("#frame-status").textContent(), /anterior \(-1\.00, 0\.00, 0\.00\).*files' axes/);
+      const apexRow = await page.locator("#landmark-table tr", { hasText: "upper_incisor_apex" }).first().textContent();
+      assert.match(apexRow, /le_fort_1/);
+      assert.ok(await page.locator("#landmark-table tr.missing", { hasText: "porion_left" }).count() === 1, "porion_left not placed");
       const clicks = [["pronasale", 0], ["subnasale", 12], ["labrale_superius", 24]];
       for (const [name, dy] of clicks) {
         await page.click(`#landmark-table button[data-landmark="${name}"]`);
