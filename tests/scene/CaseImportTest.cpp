@@ -12,6 +12,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "ImportRefusal.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseImport.hpp"
@@ -42,19 +43,8 @@ class CaseImport : public ::testing::Test {
     return in;
   }
   std::string file(const std::string& name) const { return (dir_ / "export" / name).string(); }
-  // The message of a failed import into `out`; fails the test when it succeeds or leaves anything.
-  std::string refusal(const CaseImportInput& in, const fs::path& out) {
-    try {
-      importCase(in, out.string());
-      ADD_FAILURE() << "imported";
-    } catch (const CaseImportError& e) {
-      EXPECT_FALSE(fs::exists(out) && fs::is_regular_file(out / "case.json")) << "no half-built case";
-      for (const auto& e2 : fs::directory_iterator(out.parent_path()))
-        EXPECT_EQ(e2.path().filename().string().find(".importing-"), std::string::npos) << e2.path();
-      return e.what();
-    }
-    return {};
-  }
+  // The message of a failed import into `out` (nothing may be left behind).
+  static std::string refusal(const CaseImportInput& in, const fs::path& out) { return test::importRefusal(in, out); }
   fs::path dir_;
 };
 

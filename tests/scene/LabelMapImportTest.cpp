@@ -15,6 +15,7 @@
 #include <iostream>
 #include <memory>
 
+#include "ImportRefusal.hpp"
 #include "LabelMapFiles.hpp"
 #include "eval/Comparison.hpp"
 #include "mesh/LabelMapSurfaces.hpp"
@@ -99,19 +100,8 @@ class LabelMapImport : public ::testing::Test {
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
-  // The message of a failed import into `out`; fails the test when it succeeds or leaves anything.
-  std::string refusal(const CaseImportInput& in, const fs::path& out) {
-    try {
-      importCase(in, out.string());
-      ADD_FAILURE() << "imported";
-    } catch (const CaseImportError& e) {
-      EXPECT_FALSE(fs::exists(out)) << "no case folder";
-      for (const auto& entry : fs::directory_iterator(out.parent_path()))
-        EXPECT_EQ(entry.path().filename().string().find(".importing-"), std::string::npos) << entry.path();
-      return e.what();
-    }
-    return {};
-  }
+  // The message of a failed import into `out` (nothing may be left behind).
+  static std::string refusal(const CaseImportInput& in, const fs::path& out) { return test::importRefusal(in, out); }
   fs::path dir_;
 };
 
