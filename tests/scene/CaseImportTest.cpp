@@ -9,10 +9,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "ImportRefusal.hpp"
+#include "SameLeFortI.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseImport.hpp"
@@ -69,6 +71,21 @@ TEST_F(CaseImport, ThePhantomsSurfacesBecomeACaseThatCutsAndMeshes) {
   const CaseModel coarse = buildCaseModel(spec, Resolution::Coarse);
   EXPECT_GT(coarse.scene.mesh.numTets(), 10000);
   EXPECT_EQ(coarse.skinEmbedding.numPoints(), coarse.tissue.skin.numVertices());
+}
+
+// The acceptance for surfaces: the phantom's own exported surfaces (STL and OBJ) imported
+// as a patient predict the phantom's Le Fort I within 1 mm on 95% of the face region.
+TEST_F(CaseImport, ThePhantomsSurfacesPredictTheSameLeFortI) {
+  CaseImportInput in = phantomInput();
+  in.anterior = Eigen::Vector3d(-1, 0, 0);  // the phantom's axes
+  in.superior = Eigen::Vector3d(0, 0, 1);
+  const CaseImportReport report = importCase(in, (dir_ / "patient").string());
+  const test::LeFortIMatch match = test::compareLeFortI(file("case.json"), report.caseFile);
+  std::cout << "face region within 1 mm of the phantom's prediction: " << 100 * match.face.region.shareWithin[0]
+            << "% (max " << match.face.region.maxAbs
+            << " mm); where the skin moved > 2 mm: " << 100 * match.movedPart.shareWithin[0]
+            << "%; the face at rest there: " << 100 * match.restAtMoved.shareWithin[0] << "%\n";
+  test::expectSameLeFortI(match);
 }
 
 TEST_F(CaseImport, MetresAreRefusedUnlessConfirmed) {
