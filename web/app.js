@@ -354,7 +354,9 @@ function setupViewer() {
   };
   for (const b of document.querySelectorAll("#views button")) b.onclick = () => sendView({ preset: b.dataset.view });
   $("colormap").onchange = () => sendView({ colormap: $("colormap").value });
-  $("show-bones").onchange = () => sendView({ bones: $("show-bones").checked });
+  // Bones are inside the skin: showing them makes the skin translucent (and a click then picks the
+  // bone under the pointer, for hard-tissue landmarks).
+  $("show-bones").onchange = () => sendView({ bones: $("show-bones").checked, skin_opacity: $("show-bones").checked ? 0.35 : 1 });
   $("before-after").onchange = () => sendView({ before_after: $("before-after").checked });
   window.addEventListener("resize", () => state.caseId && sendView({ size: frameSize() }));
 }

@@ -63,7 +63,7 @@ function renderLandmarks() {
 function startPlacing(name) {
   editor.placing = name;
   renderLandmarks();
-  $("edit-status").textContent = `click the face where ${name} lies`;
+  $("edit-status").textContent = `click where ${name} lies (tick "bones" to click on the bones)`;
 }
 
 // A pick while a landmark is being placed places it; returns whether it took the pick.

@@ -41,6 +41,7 @@ void SessionView::create() {
   render::setCase(*renderer_, *model_, render::caseTexture(model_->spec));
   jpeg_ = std::make_unique<render::JpegEncoder>(85);
   restSkin_ = model_->deformedSkin(model_->scene.mesh.rest);
+  bones_ = render::caseBonePieces(*model_);
   camera_ = render::clinicalCamera(render::ClinicalView::Frontal, model_->spec.frame, renderer_->skinPositions(),
                                    renderer_->viewAspect(options_));
 }
@@ -75,7 +76,10 @@ Frame SessionView::render() {
     std::swap(view, pendingView_);
     difference.swap(pendingDifference_);
   }
-  if (state) render::setCaseState(*renderer_, *model_, *state);
+  if (state) {
+    render::setCaseState(*renderer_, *model_, *state);
+    fragmentPoses_ = state->fragments;
+  }
   if (difference) renderer_->setSkinValues(*difference);
   applyView(view);
   const auto t0 = std::chrono::steady_clock::now();
@@ -98,12 +102,33 @@ Frame SessionView::render() {
 nlohmann::json SessionView::pick(double x, double y) {
   if (!renderer_) create();
   nlohmann::json out = {{"x", x}, {"y", y}, {"view", preset_}, {"surface", nullptr}};
-  // The camera and skin of the last frame drawn: what the user clicked on.
-  const std::optional<render::SurfacePick> hit = render::pickSurface(
-      camera_, x, y, renderer_->width(), renderer_->height(), restSkin_, renderer_->skinPositions());
+  const int w = renderer_->width(), h = renderer_->height();
+  // The camera and surfaces of the last frame drawn: what the user clicked on.
+  std::optional<render::SurfacePick> hit =
+      render::pickSurface(camera_, x, y, w, h, restSkin_, renderer_->skinPositions());
+  std::string surface = hit ? "skin" : "";
+  if (options_.showBones) {
+    const bool throughSkin = options_.skinOpacity < 1.0f;  // the bones show through: they are what is meant
+    std::optional<render::SurfacePick> bone;
+    for (const render::BonePiece& piece : bones_) {
+      const RigidPose pose = piece.fragmentIndex < static_cast<int>(fragmentPoses_.size())
+                                 ? fragmentPoses_[static_cast<size_t>(piece.fragmentIndex)]
+                                 : RigidPose::identity();
+      const Eigen::Matrix3Xd drawn = (pose.R * piece.surface.vertices).colwise() + pose.b;
+      const std::optional<render::SurfacePick> p = render::pickSurface(camera_, x, y, w, h, piece.surface, drawn);
+      if (p && (!bone || p->depthMm < bone->depthMm)) {
+        bone = p;
+        surface = piece.fragment;
+      }
+    }
+    if (bone && (throughSkin || !hit || bone->depthMm < hit->depthMm))
+      hit = bone;
+    else if (hit)
+      surface = "skin";
+  }
   if (!hit) return out;
   auto vec = [](const Eigen::Vector3d& p) { return nlohmann::json::array({p.x(), p.y(), p.z()}); };
-  out["surface"] = "skin";
+  out["surface"] = surface;
   out["point_mm"] = vec(hit->point);
   out["rest_mm"] = vec(hit->rest);
   out["depth_mm"] = hit->depthMm;

@@ -41,8 +41,9 @@ class SessionView {
 
   // The render thread only. Throws RenderError (no EGL, bad texture).
   Frame render();
-  // The render thread only: what pixel (x, y) of the last frame shows of the skin as drawn,
-  // {"x", "y", "surface": "skin" or null, "point_mm", "rest_mm", "depth_mm"} (docs/protocol.md).
+  // The render thread only: what pixel (x, y) of the last frame shows, {"x", "y", "surface",
+  // "point_mm", "rest_mm", "depth_mm"} (docs/protocol.md): the skin, or with the bones shown a bone
+  // fragment (its name; through translucent skin the bones come first); surface null for none.
   nlohmann::json pick(double x, double y);
 
  private:
@@ -63,7 +64,9 @@ class SessionView {
   std::string preset_ = "frontal";
   render::RenderOptions options_;
   RgbImage image_;
-  SurfaceMesh restSkin_;  // what picks map back to
+  SurfaceMesh restSkin_;                  // what picks map back to
+  std::vector<render::BonePiece> bones_;  // at rest, for picks on the bones
+  std::vector<RigidPose> fragmentPoses_;  // of the state drawn last
 };
 
 }  // namespace orthosim::server

@@ -81,6 +81,19 @@ TEST_F(PlanningFrames, AClickPicksTheSkinTheFrameShows) {
   const json missing = ws_->request({{"type", "pick"}, {"x", 2}});
   EXPECT_EQ(missing["type"], "error");
   EXPECT_EQ(missing["error"], "missing_field");
+
+  // With the bones shown through translucent skin, the same pixel picks the bone behind the skin
+  // (hard-tissue landmarks are placed so); with opaque skin the skin in front is what it shows.
+  ws_->send({{"type", "view"}, {"bones", true}, {"skin_opacity", 0.3}});
+  nextFrame(*ws_);
+  const json bone = ws_->request({{"type", "pick"}, {"x", 400}, {"y", 300}});
+  std::cout << "picked through the skin: " << bone.dump() << "\n";
+  ASSERT_TRUE(bone["surface"].is_string()) << bone.dump();
+  EXPECT_NE(bone["surface"], "skin") << bone.dump();
+  EXPECT_GT(bone["depth_mm"].get<double>(), skin["depth_mm"].get<double>()) << "the bone lies behind the skin";
+  ws_->send({{"type", "view"}, {"skin_opacity", 1.0}});
+  nextFrame(*ws_);
+  EXPECT_EQ(ws_->request({{"type", "pick"}, {"x", 400}, {"y", 300}})["surface"], "skin");
 }
 
 TEST_F(PlanningFrames, ViewChangesDrawNewFrames) {
