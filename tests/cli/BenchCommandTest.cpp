@@ -2,27 +2,15 @@
 // named, and the old mode flags are refused rather than silently timing the blocks.
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <memory>
 #include <string>
+
+#include "RunCli.hpp"
 
 namespace orthosim {
 namespace {
 
-struct CliRun {
-  int status;
-  std::string out;
-};
-
-CliRun runCli(const std::string& args) {
-  const std::string cmd = std::string(ORTHOSIM_CLI) + " " + args + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  std::string out;
-  char buf[4096];
-  for (size_t n; (n = fread(buf, 1, sizeof buf, pipe.get())) > 0;) out.append(buf, n);
-  const int status = pclose(pipe.release());
-  return {WEXITSTATUS(status), out};
-}
+using test::CliRun;
+using test::runCli;
 
 TEST(BenchCommand, ListsItsModesAsSubcommands) {
   const CliRun r = runCli("bench --help");

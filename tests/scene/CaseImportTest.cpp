@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ImportRefusal.hpp"
+#include "RunCli.hpp"
 #include "SameLeFortI.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
@@ -197,24 +198,17 @@ TEST_F(CaseImport, TheFrameComesFromTheFrankfortHorizontal) {
 }
 
 TEST_F(CaseImport, FromTheCommandLine) {
-  const auto run = [](const std::string& args) {
-    const std::string cmd = std::string(ORTHOSIM_CLI) + " import " + args + " 2>&1";
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-    std::string out;
-    char buf[4096];
-    for (size_t n; (n = fread(buf, 1, sizeof buf, pipe.get())) > 0;) out.append(buf, n);
-    return std::make_pair(WEXITSTATUS(pclose(pipe.release())), out);
-  };
+  const auto run = [](const std::string& args) { return test::runCli("import " + args); };
   const std::string files = " --skin " + file("skin.obj") + " --skull " + file("skull.stl") + " --mandible " +
                             file("mandible.stl") + " --cavity " + file("oral_cavity.stl") + " --landmarks " +
                             file("landmarks.json");
   const auto ok = run(files + " --cuts le_fort_1,bsso --out " + (dir_ / "cli").string());
-  EXPECT_EQ(ok.first, 0) << ok.second;
-  EXPECT_TRUE(fs::is_regular_file(dir_ / "cli" / "case.json")) << ok.second;
+  EXPECT_EQ(ok.status, 0) << ok.out;
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "cli" / "case.json")) << ok.out;
   EXPECT_EQ(loadCaseFile((dir_ / "cli" / "case.json").string()).cuts.size(), 2u);
   const auto bad = run(files + " --cuts le_fort_1,le_fort_9 --out " + (dir_ / "cli2").string());
-  EXPECT_EQ(bad.first, 1) << bad.second;
-  EXPECT_NE(bad.second.find("le_fort_9"), std::string::npos) << bad.second;
+  EXPECT_EQ(bad.status, 1) << bad.out;
+  EXPECT_NE(bad.out.find("le_fort_9"), std::string::npos) << bad.out;
 }
 
 }  // namespace

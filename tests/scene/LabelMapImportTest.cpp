@@ -17,6 +17,7 @@
 
 #include "ImportRefusal.hpp"
 #include "LabelMapFiles.hpp"
+#include "RunCli.hpp"
 #include "SameLeFortI.hpp"
 #include "eval/Comparison.hpp"
 #include "mesh/LabelMapSurfaces.hpp"
@@ -297,21 +298,14 @@ Grid blockHead() {
 }
 
 TEST_F(LabelMapImport, FromTheCommandLine) {
-  const auto run = [](const std::string& args) {
-    const std::string cmd = std::string(ORTHOSIM_CLI) + " import " + args + " 2>&1";
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-    std::string out;
-    char buf[4096];
-    for (size_t n; (n = fread(buf, 1, sizeof buf, pipe.get())) > 0;) out.append(buf, n);
-    return std::make_pair(WEXITSTATUS(pclose(pipe.release())), out);
-  };
+  const auto run = [](const std::string& args) { return test::runCli("import " + args); };
   const Grid g = blockHead();
   const std::string map = (dir_ / "block.nrrd").string();
   writeNrrd(g, map, true);
   const auto ok = run("--label-map " + map + " --tissue-labels 1 --skull-labels 2 --mandible-labels 3 --out " +
                       (dir_ / "cli").string());
-  ASSERT_EQ(ok.first, 0) << ok.second;
-  EXPECT_NE(ok.second.find("NRRD space left-posterior-superior"), std::string::npos) << ok.second;
+  ASSERT_EQ(ok.status, 0) << ok.out;
+  EXPECT_NE(ok.out.find("NRRD space left-posterior-superior"), std::string::npos) << ok.out;
   const CaseSpec spec = loadCaseFile((dir_ / "cli" / "case.json").string());
   EXPECT_EQ(spec.frame.anterior, Eigen::Vector3d(0, -1, 0));  // LPS
   EXPECT_EQ(spec.frame.superior, Eigen::Vector3d(0, 0, 1));
@@ -324,15 +318,15 @@ TEST_F(LabelMapImport, FromTheCommandLine) {
 
   const auto bad = run("--label-map " + map + " --tissue-labels 1,4 --skull-labels 2 --mandible-labels 3 --out " +
                        (dir_ / "cli2").string());
-  EXPECT_EQ(bad.first, 1) << bad.second;
-  EXPECT_NE(bad.second.find("block.nrrd: label 4 (chosen for the soft tissue) is not in the label map; its labels "
-                            "are 1, 2, 3"),
+  EXPECT_EQ(bad.status, 1) << bad.out;
+  EXPECT_NE(bad.out.find("block.nrrd: label 4 (chosen for the soft tissue) is not in the label map; its labels "
+                         "are 1, 2, 3"),
             std::string::npos)
-      << bad.second;
+      << bad.out;
   EXPECT_FALSE(fs::exists(dir_ / "cli2"));
   const auto both = run("--label-map " + map + " --skin " + map + " --out " + (dir_ / "cli3").string());
-  EXPECT_NE(both.first, 0) << both.second;
-  EXPECT_NE(both.second.find("excludes"), std::string::npos) << both.second;
+  EXPECT_NE(both.status, 0) << both.out;
+  EXPECT_NE(both.out.find("excludes"), std::string::npos) << both.out;
 }
 
 }  // namespace
