@@ -357,6 +357,7 @@ function setupViewer() {
   // Bones are inside the skin: showing them makes the skin translucent (and a click then picks the
   // bone under the pointer, for hard-tissue landmarks).
   $("show-bones").onchange = () => sendView({ bones: $("show-bones").checked, skin_opacity: $("show-bones").checked ? 0.35 : 1 });
+  $("show-landmarks").onchange = () => sendView({ landmarks: $("show-landmarks").checked });
   $("before-after").onchange = () => sendView({ before_after: $("before-after").checked });
   window.addEventListener("resize", () => state.caseId && sendView({ size: frameSize() }));
 }

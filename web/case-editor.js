@@ -62,6 +62,10 @@ function renderLandmarks() {
 
 function startPlacing(name) {
   editor.placing = name;
+  if (!$("show-landmarks").checked) {  // placing one: show where the others are
+    $("show-landmarks").checked = true;
+    sendView({ landmarks: true });
+  }
   renderLandmarks();
   $("edit-status").textContent = `click where ${name} lies (tick "bones" to click on the bones)`;
 }

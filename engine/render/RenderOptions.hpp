@@ -18,6 +18,12 @@ enum class ColorMap {
 const std::vector<std::string>& colorMapNames();
 ColorMap parseColorMap(const std::string& name);  // throws RenderError naming the valid names
 
+// A labelled point drawn over the frame where the camera sees it (a landmark), in the case's mm.
+struct Marker {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  std::string label;
+};
+
 struct RenderOptions {
   bool showSkin = true;
   float skinOpacity = 1.0f;  // in (0, 1]; below 1 the bones show through the skin
@@ -30,6 +36,8 @@ struct RenderOptions {
   // half, both through the same camera, labelled; the colour map applies to the "after" half.
   bool beforeAfter = false;
   Eigen::Vector3f background{0.16f, 0.17f, 0.20f};
+  // Drawn over the (after) view, on top of the surfaces: a small square and the label.
+  std::vector<Marker> markers;
 };
 
 }  // namespace orthosim::render

@@ -84,7 +84,7 @@ struct Renderer::Impl {
   void drawSkin(const RenderOptions& options, bool atRest);
   void setSkinUniforms(const RenderOptions& options, bool atRest);
   void drawView(const Camera& camera, const RenderOptions& options, double aspect, bool atRest);
-  void drawLabels(const RenderOptions& options, const FrameLayout& layout);
+  void drawLabels(const RenderOptions& options, const FrameLayout& layout, const Camera& camera);
 };
 
 void Renderer::Impl::drawBones(bool atRest) {
@@ -158,7 +158,7 @@ void Renderer::Impl::drawView(const Camera& camera, const RenderOptions& o, doub
   if (o.showSkin && gpu->skin) drawSkin(o, atRest);
 }
 
-void Renderer::Impl::drawLabels(const RenderOptions& o, const FrameLayout& layout) {
+void Renderer::Impl::drawLabels(const RenderOptions& o, const FrameLayout& layout, const Camera& camera) {
   const int w = gpu->framebuffer.width(), h = gpu->framebuffer.height();
   const double s = layout.fontScale;
   Overlay& overlay = gpu->overlay;
@@ -175,6 +175,15 @@ void Renderer::Impl::drawLabels(const RenderOptions& o, const FrameLayout& layou
       overlay.rect(x, 0, x + Overlay::textWidth(label, s) + 12 * s, 17 * s, Eigen::Vector4f(0, 0, 0, 0.35f));
       overlay.text(x + 6 * s, 5 * s, label, s, Eigen::Vector4f::Ones());
     }
+  }
+  const PixelRect& view = layout.views.back();  // markers go on the current (after) face
+  for (const Marker& m : o.markers) {
+    const ProjectedPoint p = camera.project(m.position, view.width, view.height);
+    if (!p.inFront) continue;
+    const double x = view.x + p.x, y = view.y + p.y, r = 3 * s;
+    overlay.rect(x - r - s, y - r - s, x + r + s, y + r + s, Eigen::Vector4f(0, 0, 0, 0.8f));
+    overlay.rect(x - r, y - r, x + r, y + r, Eigen::Vector4f(1.0f, 0.85f, 0.1f, 1.0f));
+    overlay.text(x + r + 3 * s, y - 3.5 * s, m.label, s, Eigen::Vector4f(1.0f, 0.85f, 0.1f, 1.0f));
   }
   glViewport(0, 0, w, h);
   overlay.draw(w, h);
@@ -263,7 +272,7 @@ void Renderer::render(const Camera& camera, const RenderOptions& o, RgbImage& ou
     glViewport(r.x, g.framebuffer.height() - r.y - r.height, r.width, r.height);  // GL counts rows from the bottom
     impl_->drawView(camera, o, layout.viewAspect(), o.beforeAfter && v == 0);
   }
-  impl_->drawLabels(o, layout);
+  impl_->drawLabels(o, layout, camera);
   g.framebuffer.readColor(out);
 }
 

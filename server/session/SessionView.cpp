@@ -1,6 +1,7 @@
 #include "session/SessionView.hpp"
 
 #include <chrono>
+#include <limits>
 
 #include "render/CaseView.hpp"
 #include "render/SurfacePick.hpp"
@@ -42,6 +43,19 @@ void SessionView::create() {
   jpeg_ = std::make_unique<render::JpegEncoder>(85);
   restSkin_ = model_->deformedSkin(model_->scene.mesh.rest);
   bones_ = render::caseBonePieces(*model_);
+  for (const auto& [name, p] : model_->spec.landmarks) {
+    LandmarkAnchor a{name, p};
+    Eigen::Index v = 0;
+    if (restSkin_.numVertices() > 0 && (restSkin_.vertices.colwise() - p).colwise().squaredNorm().minCoeff(&v) < 4.0)
+      a.skinVertex = static_cast<int>(v);
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; a.skinVertex < 0 && k < bones_.size(); ++k) {
+      if (bones_[k].surface.numVertices() == 0) continue;
+      const double d = (bones_[k].surface.vertices.colwise() - p).colwise().squaredNorm().minCoeff();
+      if (d < best) best = d, a.bonePiece = static_cast<int>(k);
+    }
+    anchors_.push_back(a);
+  }
   camera_ = render::clinicalCamera(render::ClinicalView::Frontal, model_->spec.frame, renderer_->skinPositions(),
                                    renderer_->viewAspect(options_));
 }
@@ -51,6 +65,7 @@ void SessionView::applyView(const ViewRequest& v) {
     renderer_->resize(v.size->x(), v.size->y());
   if (v.colorMap) options_.colorMap = render::parseColorMap(*v.colorMap);
   if (v.bones) options_.showBones = *v.bones;
+  if (v.landmarks) showLandmarks_ = *v.landmarks;
   if (v.skinOpacity) options_.skinOpacity = static_cast<float>(*v.skinOpacity);
   if (v.beforeAfter) options_.beforeAfter = *v.beforeAfter;
   if (v.preset || v.size || v.beforeAfter) {  // the framing depends on the view's aspect
@@ -82,6 +97,7 @@ Frame SessionView::render() {
   }
   if (difference) renderer_->setSkinValues(*difference);
   applyView(view);
+  placeMarkers();
   const auto t0 = std::chrono::steady_clock::now();
   renderer_->render(camera_, options_, image_);
   const double renderMs = msSince(t0);
@@ -97,6 +113,22 @@ Frame SessionView::render() {
                 {"colormap", render::colorMapNames()[static_cast<size_t>(options_.colorMap)]},
                 {"shows", shows_}};
   return frame;
+}
+
+void SessionView::placeMarkers() {
+  options_.markers.clear();
+  if (!showLandmarks_) return;
+  const Eigen::Matrix3Xd& skin = renderer_->skinPositions();
+  for (const LandmarkAnchor& a : anchors_) {
+    Eigen::Vector3d at = a.rest;
+    if (a.skinVertex >= 0) {
+      at += skin.col(a.skinVertex) - restSkin_.vertices.col(a.skinVertex);
+    } else if (a.bonePiece >= 0) {
+      const size_t f = static_cast<size_t>(bones_[static_cast<size_t>(a.bonePiece)].fragmentIndex);
+      if (f < fragmentPoses_.size()) at = fragmentPoses_[f].apply(a.rest);
+    }
+    options_.markers.push_back({at, a.name});
+  }
 }
 
 nlohmann::json SessionView::pick(double x, double y) {

@@ -67,6 +67,17 @@ class SessionView {
   SurfaceMesh restSkin_;                  // what picks map back to
   std::vector<render::BonePiece> bones_;  // at rest, for picks on the bones
   std::vector<RigidPose> fragmentPoses_;  // of the state drawn last
+  bool showLandmarks_ = false;
+  // Each landmark follows what it lies on: the nearest rest-skin vertex within 2 mm, else the
+  // nearest bone piece's fragment (index into bones_; -1: neither, drawn at rest).
+  struct LandmarkAnchor {
+    std::string name;
+    Eigen::Vector3d rest;
+    int skinVertex = -1;
+    int bonePiece = -1;
+  };
+  std::vector<LandmarkAnchor> anchors_;
+  void placeMarkers();
 };
 
 }  // namespace orthosim::server

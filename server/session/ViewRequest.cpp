@@ -44,6 +44,7 @@ void ViewRequest::merge(const ViewRequest& later) {
   panPixels += later.panPixels;
   if (later.colorMap) colorMap = later.colorMap;
   if (later.bones) bones = later.bones;
+  if (later.landmarks) landmarks = later.landmarks;
   if (later.skinOpacity) skinOpacity = later.skinOpacity;
   if (later.beforeAfter) beforeAfter = later.beforeAfter;
   if (later.size) size = later.size;
@@ -58,6 +59,7 @@ ViewRequest readViewRequest(MessageReader& r) {
   if (v.zoom <= 0) r.fail("out_of_range", "must be positive", "zoom");
   v.colorMap = oneOf(r, "colormap", render::colorMapNames());
   if (r.has("bones")) v.bones = r.boolean("bones", false);
+  if (r.has("landmarks")) v.landmarks = r.boolean("landmarks", false);
   if (r.has("skin_opacity")) v.skinOpacity = r.number("skin_opacity", 1, 0.05, 1, "");
   if (r.has("before_after")) v.beforeAfter = r.boolean("before_after", false);
   if (r.has("size")) {

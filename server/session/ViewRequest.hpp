@@ -16,6 +16,7 @@ struct ViewRequest {
   Eigen::Vector2d panPixels = Eigen::Vector2d::Zero();  // right, down (as the mouse moves)
   std::optional<std::string> colorMap;
   std::optional<bool> bones;
+  std::optional<bool> landmarks;  // the case's landmarks drawn as labelled markers
   std::optional<double> skinOpacity;
   std::optional<bool> beforeAfter;
   std::optional<Eigen::Vector2i> size;  // width, height in pixels

@@ -47,6 +47,23 @@ TEST_F(Renderer, PhantomImageIsNotBlank) {
 // Soft landmarks on the skin, projected with the camera's own matrices, land on covered pixels at
 // the depth the depth buffer holds there (landmarks facing the camera: the midline ones lie on the
 // silhouette in a profile); outside the projected skin everything is background.
+// Landmark markers (issue 20: each landmark shown where it is): a marker is drawn in its colour at
+// the pixel its point projects to, over the skin, and nothing of it without markers.
+TEST_F(Renderer, AMarkerIsDrawnWhereItsLandmarkProjects) {
+  auto r = phantomRenderer();
+  const Camera cam = camera(ClinicalView::Frontal, *r);
+  RenderOptions o;
+  o.markers = {{softLandmark("pronasale"), "pronasale"}};
+  const ProjectedPoint p = cam.project(softLandmark("pronasale"), kWidth, kHeight);
+  const int x = static_cast<int>(p.x), y = static_cast<int>(p.y);
+  const Eigen::Vector3i marked = pixel(r->render(cam, o), x, y);
+  const Eigen::Vector3i plain = pixel(r->render(cam, {}), x, y);
+  EXPECT_GT(marked.x(), 230) << marked.transpose();  // the marker's yellow (255, 217, 26)
+  EXPECT_GT(marked.y(), 190) << marked.transpose();
+  EXPECT_LT(marked.z(), 80) << marked.transpose();
+  EXPECT_GT((marked - plain).cwiseAbs().maxCoeff(), 60) << "the skin there is another colour: " << plain.transpose();
+}
+
 TEST_F(Renderer, SkinIsWhereTheCameraSays) {
   auto r = phantomRenderer();
   const std::map<ClinicalView, std::vector<const char*>> facing = {

@@ -96,6 +96,21 @@ TEST_F(PlanningFrames, AClickPicksTheSkinTheFrameShows) {
   EXPECT_EQ(ws_->request({{"type", "pick"}, {"x", 400}, {"y", 300}})["surface"], "skin");
 }
 
+// The case's landmarks drawn as markers on request (the renderer's marker is checked in
+// RendererTest): the frame changes, and changes back when they are hidden again.
+TEST_F(PlanningFrames, LandmarksAreDrawnOnRequest) {
+  nextFrame(*ws_);
+  const std::string plain = ws_->lastBinary();
+  ws_->send({{"type", "view"}, {"landmarks", true}});
+  nextFrame(*ws_);
+  EXPECT_NE(ws_->lastBinary(), plain);
+  ws_->send({{"type", "view"}, {"landmarks", false}});
+  nextFrame(*ws_);
+  EXPECT_EQ(ws_->lastBinary(), plain) << "the same face without markers";
+  const json bad = ws_->request({{"type", "view"}, {"landmarks", "yes"}});
+  EXPECT_EQ(bad["type"], "error");
+}
+
 TEST_F(PlanningFrames, ViewChangesDrawNewFrames) {
   nextFrame(*ws_);
   const std::string frontal = ws_->lastBinary();
