@@ -5,11 +5,11 @@
 "use strict";
 
 const TEMPLATES = [
-  { kind: "le_fort_1", label: "Le Fort I", offset: 4, hint: "mm above the upper incisor apex" },
+  { kind: "le_fort_1", label: "Le Fort I", offset: 4, hint: "mm above the upper incisor apex", tilts: true },
   { kind: "le_fort_2", label: "Le Fort II", offset: 8, hint: "mm below nasion" },
-  { kind: "segmented_maxilla", label: "segmented maxilla", offset: 4, hint: "mm above the upper incisor apex" },
+  { kind: "segmented_maxilla", label: "segmented maxilla", offset: 4, hint: "mm above the upper incisor apex", tilts: true },
   { kind: "bsso", label: "BSSO", offset: 12, hint: "mm behind the lower first molars" },
-  { kind: "genioplasty", label: "genioplasty", offset: 5, hint: "mm below the mental foramina" },
+  { kind: "genioplasty", label: "genioplasty", offset: 5, hint: "mm below the mental foramina", tilts: true },
 ];
 const editor = { landmarks: {}, pending: {}, placing: null, cuts: [], needed: {} };
 
@@ -92,9 +92,11 @@ function renderCutEditor() {
     const row = document.createElement("label");
     row.className = "row";
     row.innerHTML = `<input type="checkbox" data-kind="${t.kind}" aria-label="cut ${t.kind}"> ${t.label}
-      <input type="number" step="0.5" min="0" max="50" data-offset="${t.kind}" aria-label="${t.kind} offset" style="width: 64px"> ${t.hint}`;
+      <input type="number" step="0.5" min="0" max="50" data-offset="${t.kind}" aria-label="${t.kind} offset" style="width: 64px"> ${t.hint}` +
+      (t.tilts ? `; tilt <input type="number" step="1" min="-30" max="30" data-tilt="${t.kind}" aria-label="${t.kind} tilt" style="width: 52px">° (+ front up)` : "");
     row.querySelector("input[type=checkbox]").checked = Boolean(current);
-    row.querySelector("input[type=number]").value = current && current.offset_mm !== undefined ? current.offset_mm : t.offset;
+    row.querySelector("input[data-offset]").value = current && current.offset_mm !== undefined ? current.offset_mm : t.offset;
+    if (t.tilts) row.querySelector("input[data-tilt]").value = current && current.tilt_deg !== undefined ? current.tilt_deg : 0;
     box.append(row);
   }
 }
@@ -104,7 +106,10 @@ function applyEdit() {
   for (const t of TEMPLATES) {
     if (!document.querySelector(`#cut-editor input[data-kind="${t.kind}"]`).checked) continue;
     const offset = Number(document.querySelector(`#cut-editor input[data-offset="${t.kind}"]`).value);
-    cuts.push({ kind: t.kind, offset_mm: offset });
+    const cut = { kind: t.kind, offset_mm: offset };
+    const tilt = t.tilts ? Number(document.querySelector(`#cut-editor input[data-tilt="${t.kind}"]`).value) : 0;
+    if (tilt) cut.tilt_deg = tilt;
+    cuts.push(cut);
   }
   const message = { type: "edit_case", cuts };
   if (Object.keys(editor.pending).length) message.landmarks = editor.pending;

@@ -105,6 +105,12 @@ OsteotomySpec readCut(JsonReader r) {
       cut.offset = r.number("offset_mm");
       if (cut.offset < 0 || cut.offset > 50) r.fail("must lie in 0..50 mm", "offset_mm");
     }
+    if (r.has("tilt_deg")) {
+      cut.tilt = r.number("tilt_deg");
+      if (!(std::abs(cut.tilt) <= 30)) r.fail("must lie in -30..30 degrees", "tilt_deg");
+      if (cut.tilt != 0 && !osteotomyTilts(cut.kind))
+        r.fail("only le_fort_1, segmented_maxilla and genioplasty cuts tilt", "tilt_deg");
+    }
   } else {
     cut.kind = "planes";
     cut.fragment = r.string("fragment");

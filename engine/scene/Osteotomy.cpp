@@ -37,7 +37,10 @@ std::vector<CutPlane> maxillaSides(const LandmarkTable& lm, const AnatomicalFram
 }
 
 std::vector<CutPlane> leFortOneBounds(const OsteotomySpec& cut, const LandmarkTable& lm, const AnatomicalFrame& f) {
-  std::vector<CutPlane> b{plane(lm("upper_incisor_apex") + offsetOr(cut, 4.0) * f.superior, -f.superior),
+  // Tilted by cut.tilt about the right axis through its level point: + raises the front.
+  const double t = cut.tilt * kDeg;
+  const Eigen::Vector3d up = std::cos(t) * f.superior - std::sin(t) * f.anterior;
+  std::vector<CutPlane> b{plane(lm("upper_incisor_apex") + offsetOr(cut, 4.0) * f.superior, -up),
                           plane(lm("PNS") - 5.0 * f.anterior, f.anterior)};
   // The Le Fort I line runs below the zygoma, so its lateral limits only keep the fragment finite:
   // far enough out (20 mm) that the tissue on the buccal alveolar bone is bonded, not blended.
@@ -89,6 +92,10 @@ const std::vector<std::string>& osteotomyTemplates() {
   static const std::vector<std::string> names{"le_fort_1", "le_fort_2", "segmented_maxilla",
                                               "bsso",      "usso",      "genioplasty"};
   return names;
+}
+
+bool osteotomyTilts(const std::string& kind) {
+  return kind == "le_fort_1" || kind == "segmented_maxilla" || kind == "genioplasty";
 }
 
 const std::vector<std::string>& osteotomyLandmarks(const std::string& kind) {
@@ -146,7 +153,7 @@ std::vector<FragmentRegion> osteotomyRegions(const OsteotomySpec& cut, const Lan
     const Eigen::Vector3d canines = 0.5 * (lm("lower_canine_left") + lm("lower_canine_right"));
     out.push_back({"chin",
                    cut.bone,
-                   {plane(level, -f.superior + std::tan(10.0 * kDeg) * f.anterior),
+                   {plane(level, -f.superior + std::tan((10.0 + cut.tilt) * kDeg) * f.anterior),
                     plane(canines - 15.0 * f.anterior, f.anterior)}});
   } else {
     std::string known;

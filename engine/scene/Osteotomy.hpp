@@ -39,7 +39,11 @@ struct OsteotomySpec {
   std::string fragment;          // "planes": the name of the fragment cut off
   std::vector<CutPlane> planes;  // "planes": its bounds
   double offset = -1;            // mm, the template's level (see osteotomyRegions); < 0: the default
+  double tilt = 0;               // degrees the level cut turns about the right axis, + raising its front
 };
+
+// Whether a template's level cut can be tilted (le_fort_1, segmented_maxilla, genioplasty).
+bool osteotomyTilts(const std::string& kind);
 
 // Template names: le_fort_1, le_fort_2, segmented_maxilla, bsso, usso, genioplasty.
 const std::vector<std::string>& osteotomyTemplates();

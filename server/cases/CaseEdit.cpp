@@ -19,6 +19,7 @@ json cutJson(const CutChoice& c) {
   json cut = {{"template", c.kind}, {"bone", boneOfTemplate(c.kind)}};
   if (c.offsetMm >= 0) cut["offset_mm"] = c.offsetMm;
   if (!c.side.empty()) cut["side"] = c.side;
+  if (c.tiltDeg != 0) cut["tilt_deg"] = c.tiltDeg;
   return cut;
 }
 

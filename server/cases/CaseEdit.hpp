@@ -18,6 +18,7 @@ struct CutChoice {
   std::string kind;      // a template (osteotomyTemplates())
   double offsetMm = -1;  // the template's level; < 0: its default
   std::string side;      // usso only: "left" or "right"
+  double tiltDeg = 0;    // le_fort_1, segmented_maxilla, genioplasty: + raises the cut's front
 };
 
 struct CaseEdit {

@@ -28,13 +28,14 @@ Landmarks readLandmarks(const MessageReader& r, const json& j) {
 }
 
 std::vector<CutChoice> readCuts(const MessageReader& r, const json& j) {
-  if (!j.is_array()) r.fail("bad_value", "/cuts: must be an array of {kind, offset_mm?, side?}", "/cuts");
+  if (!j.is_array()) r.fail("bad_value", "/cuts: must be an array of {kind, offset_mm?, tilt_deg?, side?}", "/cuts");
   std::vector<CutChoice> out;
   for (std::size_t i = 0; i < j.size(); ++i) {
     MessageReader c(j[i], "/cuts/" + std::to_string(i));
     CutChoice cut;
     cut.kind = c.string("kind");
     if (c.has("offset_mm")) cut.offsetMm = c.number("offset_mm", 0, 0, 50, "mm");
+    if (c.has("tilt_deg")) cut.tiltDeg = c.number("tilt_deg", 0, -30, 30, "degrees");
     if (const std::optional<std::string> side = c.optionalString("side")) cut.side = *side;
     c.rejectUnknown();
     out.push_back(cut);

@@ -31,6 +31,7 @@ json osteotomySetJson(const std::vector<OsteotomySpec>& cuts) {
     if (!cut.side.empty()) j["side"] = cut.side;
     if (!cut.fragment.empty()) j["fragment"] = cut.fragment;
     if (cut.offset >= 0) j["offset_mm"] = cut.offset;
+    if (cut.tilt != 0) j["tilt_deg"] = cut.tilt;
     if (!cut.planes.empty()) {
       j["planes"] = json::array();
       for (const CutPlane& p : cut.planes)

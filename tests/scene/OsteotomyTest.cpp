@@ -285,5 +285,26 @@ TEST(Osteotomy, EachTemplateNamesTheLandmarksItIsPlacedFrom) {
   EXPECT_THROW(osteotomyLandmarks("le_fort_3"), std::invalid_argument);
 }
 
+// Tilt (issue 20, point 3): the level cut of a Le Fort I turns about the right axis through its
+// level point; the genioplasty's 10 degree rise grows by the tilt. Closed form for both normals.
+TEST(Osteotomy, TiltTurnsTheLevelCutAboutTheRightAxis) {
+  const AnatomicalFrame f;
+  const Landmarks lm = skullLandmarks();
+  auto levelNormal = [&](const std::string& kind, double tilt) {
+    OsteotomySpec cut;
+    cut.kind = kind;
+    cut.bone = "bone";
+    cut.tilt = tilt;
+    return osteotomyRegions(cut, lm, f).front().bounds.front().normal;
+  };
+  const double t = 7.0 * kDeg;
+  EXPECT_LT((levelNormal("le_fort_1", 0) + f.superior).norm(), 1e-12);
+  EXPECT_LT((levelNormal("le_fort_1", 7) + (std::cos(t) * f.superior - std::sin(t) * f.anterior)).norm(), 1e-12);
+  const Eigen::Vector3d genio = (-f.superior + std::tan(17.0 * kDeg) * f.anterior).normalized();
+  EXPECT_LT((levelNormal("genioplasty", 7) - genio).norm(), 1e-12);
+  EXPECT_TRUE(osteotomyTilts("le_fort_1"));
+  EXPECT_FALSE(osteotomyTilts("bsso"));
+}
+
 }  // namespace
 }  // namespace orthosim

@@ -68,7 +68,7 @@ TEST_F(CaseEditFile, AMovedLandmarkOrOffsetMovesTheCut) {
   EXPECT_NEAR(levelOf(loadCaseFile(file_)), level + 2.0, 1e-9);
 
   CaseEdit offset;
-  offset.cuts = std::vector<CutChoice>{{"le_fort_1", 6.0, ""}, {"bsso", -1, ""}};
+  offset.cuts = std::vector<CutChoice>{{"le_fort_1", 6.0, "", 0}, {"bsso", -1, "", 0}};
   applyCaseEdit(file_, offset);
   const CaseSpec after = loadCaseFile(file_);
   EXPECT_NEAR(levelOf(after), level + 4.0, 1e-9);
@@ -95,9 +95,30 @@ TEST_F(CaseEditFile, PlacedPorionsAndOrbitaleGiveTheFrame) {
   EXPECT_NEAR(std::acos(spec.frame.superior.z()) * 180 / M_PI, 10.0, 1e-6) << "tilted with the plane";
 }
 
+// A tilted Le Fort I (issue 20, point 3: shift or tilt): the maxilla's upper bound turns 8 degrees
+// about the right axis, its front raised.
+TEST_F(CaseEditFile, ATiltTurnsTheLeFortILevel) {
+  CaseEdit tilt;
+  tilt.cuts = std::vector<CutChoice>{{"le_fort_1", -1, "", 8.0}, {"bsso", -1, "", 0}};
+  applyCaseEdit(file_, tilt);
+  const CaseSpec spec = loadCaseFile(file_);
+  EXPECT_EQ(spec.cuts[0].tilt, 8.0);
+  const double t = 8.0 * M_PI / 180;
+  const Eigen::Vector3d expected = -(std::cos(t) * spec.frame.superior - std::sin(t) * spec.frame.anterior);
+  bool found = false;
+  for (const FragmentRegion& r : spec.regions)
+    if (r.name == "maxilla")
+      for (const CutPlane& p : r.bounds) found = found || (p.normal - expected).norm() < 1e-9;
+  EXPECT_TRUE(found) << "the maxilla's upper bound is tilted";
+}
+
 TEST_F(CaseEditFile, RefusedEditsSayWhyAndChangeNothing) {
   CaseEdit unknown;
-  unknown.cuts = std::vector<CutChoice>{{"le_fort_3", -1, ""}};
+  unknown.cuts = std::vector<CutChoice>{{"le_fort_3", -1, "", 0}};
+  EXPECT_NE(refusal(unknown).find("le_fort_3"), std::string::npos);
+  unknown.cuts = std::vector<CutChoice>{{"bsso", -1, "", 5}};  // a sagittal split has no level to tilt
+  EXPECT_NE(refusal(unknown).find("tilt_deg"), std::string::npos);
+  unknown.cuts = std::vector<CutChoice>{{"le_fort_3", -1, "", 0}};
   EXPECT_NE(refusal(unknown).find("le_fort_3"), std::string::npos);
   CaseEdit samePorions;
   samePorions.landmarks = {{"porion_left", {10, 0, 0}}, {"porion_right", {10, 0, 0}}, {"orbitale_left", {-70, 0, 0}}};

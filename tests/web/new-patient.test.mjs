@@ -2,7 +2,8 @@
 // `orthosim phantom`, are uploaded through the page's form; a bad file is refused with its name,
 // then the good set becomes a case that opens, moving its Le Fort I maxilla gives a converged
 // preview, a click on the face picks the skin; then three landmarks are placed by clicking the
-// face, the Le Fort I is shifted 2 mm up, the case is rebuilt with its progress shown and previews. Runs on its own data folder, so the shared one never holds the imported patient.
+// face, the Le Fort I is shifted 2 mm up and tilted 5 degrees, the case is rebuilt with its progress
+// shown and previews. Runs on its own data folder, so the shared one never holds the imported patient.
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
@@ -90,11 +91,13 @@ test("new patient: upload surfaces, refusal named, case opens and previews", { t
       const offset = page.locator('input[aria-label="le_fort_1 offset"]');
       assert.equal(Number(await offset.inputValue()), 4, "the Le Fort I at its default level");
       await offset.fill("6");
+      await page.fill('input[aria-label="le_fort_1 tilt"]', "5");
       const progressSeen = page.waitForFunction(() => !document.querySelector("#rebuild-progress").hidden, null, { timeout: 60000 });
       await page.click("#apply-edit");
       await progressSeen;
       await page.waitForFunction(() => /case rebuilt/.test(document.querySelector("#edit-status").textContent), null, { timeout: 180000 });
       assert.equal(Number(await offset.inputValue()), 6, "the rebuilt case has the shifted Le Fort I");
+      assert.equal(Number(await page.locator('input[aria-label="le_fort_1 tilt"]').inputValue()), 5, "and tilted");
       assert.equal(await page.locator("#landmark-table").textContent().then((t) => /new place/.test(t)), false);
       await slider.waitFor({ timeout: 60000 });
       await slider.focus();
