@@ -9,6 +9,8 @@ const TEMPLATES = [
   { kind: "le_fort_2", label: "Le Fort II", offset: 8, hint: "mm below nasion" },
   { kind: "segmented_maxilla", label: "segmented maxilla", offset: 4, hint: "mm above the upper incisor apex", tilts: true },
   { kind: "bsso", label: "BSSO", offset: 12, hint: "mm behind the lower first molars" },
+  { kind: "usso", side: "left", label: "USSO left", offset: 12, hint: "mm behind the lower first molar" },
+  { kind: "usso", side: "right", label: "USSO right", offset: 12, hint: "mm behind the lower first molar" },
   { kind: "genioplasty", label: "genioplasty", offset: 5, hint: "mm below the mental foramina", tilts: true },
 ];
 const editor = { landmarks: {}, pending: {}, placing: null, cuts: [], needed: {} };
@@ -84,16 +86,19 @@ function placeLandmark(m) {
   return true;
 }
 
+const templateKey = (t) => (t.side ? `${t.kind}_${t.side}` : t.kind);
+
 function renderCutEditor() {
   const box = $("cut-editor");
   box.innerHTML = "";
   for (const t of TEMPLATES) {
-    const current = editor.cuts.find((c) => c.kind === t.kind);
+    const current = editor.cuts.find((c) => c.kind === t.kind && (!t.side || c.side === t.side));
     const row = document.createElement("label");
     row.className = "row";
-    row.innerHTML = `<input type="checkbox" data-kind="${t.kind}" aria-label="cut ${t.kind}"> ${t.label}
-      <input type="number" step="0.5" min="0" max="50" data-offset="${t.kind}" aria-label="${t.kind} offset" style="width: 64px"> ${t.hint}` +
-      (t.tilts ? `; tilt <input type="number" step="1" min="-30" max="30" data-tilt="${t.kind}" aria-label="${t.kind} tilt" style="width: 52px">° (+ front up)` : "");
+    const key = templateKey(t);
+    row.innerHTML = `<input type="checkbox" data-kind="${key}" aria-label="cut ${key}"> ${t.label}
+      <input type="number" step="0.5" min="0" max="50" data-offset="${key}" aria-label="${key} offset" style="width: 64px"> ${t.hint}` +
+      (t.tilts ? `; tilt <input type="number" step="1" min="-30" max="30" data-tilt="${key}" aria-label="${key} tilt" style="width: 52px">° (+ front up)` : "");
     row.querySelector("input[type=checkbox]").checked = Boolean(current);
     row.querySelector("input[data-offset]").value = current && current.offset_mm !== undefined ? current.offset_mm : t.offset;
     if (t.tilts) row.querySelector("input[data-tilt]").value = current && current.tilt_deg !== undefined ? current.tilt_deg : 0;
@@ -104,10 +109,12 @@ function renderCutEditor() {
 function applyEdit() {
   const cuts = [];
   for (const t of TEMPLATES) {
-    if (!document.querySelector(`#cut-editor input[data-kind="${t.kind}"]`).checked) continue;
-    const offset = Number(document.querySelector(`#cut-editor input[data-offset="${t.kind}"]`).value);
+    const key = templateKey(t);
+    if (!document.querySelector(`#cut-editor input[data-kind="${key}"]`).checked) continue;
+    const offset = Number(document.querySelector(`#cut-editor input[data-offset="${key}"]`).value);
     const cut = { kind: t.kind, offset_mm: offset };
-    const tilt = t.tilts ? Number(document.querySelector(`#cut-editor input[data-tilt="${t.kind}"]`).value) : 0;
+    if (t.side) cut.side = t.side;
+    const tilt = t.tilts ? Number(document.querySelector(`#cut-editor input[data-tilt="${key}"]`).value) : 0;
     if (tilt) cut.tilt_deg = tilt;
     cuts.push(cut);
   }

@@ -237,7 +237,13 @@ json caseJson(const CaseImportInput& in, const std::string& name, const json& ca
   if (!cavities.empty()) tissue["cavities"] = cavities;
   if (!in.texture.empty()) tissue["texture"] = "texture" + fs::path(in.texture).extension().string();
   json cuts = json::array();
-  for (const std::string& kind : in.cuts) cuts.push_back({{"template", kind}, {"bone", boneOfTemplate(kind)}});
+  for (const std::string& name : in.cuts) {
+    // A unilateral split names its side: usso_left, usso_right.
+    const bool usso = name == "usso_left" || name == "usso_right";
+    json cut = {{"template", usso ? "usso" : name}, {"bone", boneOfTemplate(name)}};
+    if (usso) cut["side"] = name.substr(5);
+    cuts.push_back(cut);
+  }
   json c = {{"units", "mm"},
             {"name", name},
             {"tissue", tissue},
@@ -326,9 +332,11 @@ void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir
 
 std::string boneOfTemplate(const std::string& kind) {
   const std::vector<std::string>& known = osteotomyTemplates();
-  if (std::find(known.begin(), known.end(), kind) == known.end()) {
+  if (kind == "usso") throw CaseImportError("cuts: 'usso' needs its side: usso_left or usso_right");
+  if (kind != "usso_left" && kind != "usso_right" && std::find(known.begin(), known.end(), kind) == known.end()) {
     std::string list;
-    for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+    for (const std::string& k : known)
+      list += (list.empty() ? "" : ", ") + (k == "usso" ? std::string("usso_left, usso_right") : k);
     throw CaseImportError("cuts: unknown osteotomy template '" + kind + "' (templates: " + list + ")");
   }
   return kind == "le_fort_1" || kind == "le_fort_2" || kind == "segmented_maxilla" ? "skull" : "mandible";

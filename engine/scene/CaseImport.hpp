@@ -25,7 +25,7 @@ struct CaseImportInput {
   std::vector<std::string> cavities;  // closed air spaces inside the skin (e.g. the oral cavity)
   std::string texture;                // image for the skin's texture coordinates (optional)
   std::string landmarks;              // JSON {name: [x, y, z]} (or grouped under hard/soft), same units
-  std::vector<std::string> cuts;      // osteotomy templates: le_fort_1, bsso, genioplasty, ...
+  std::vector<std::string> cuts;      // osteotomy templates: le_fort_1, bsso, genioplasty, usso_left, ...
   std::string units = "auto";         // "mm", "m", or "auto": mm, refusing sizes that look like metres
   std::string name;                   // the case's name (default: the folder's)
   // The anatomical frame; default: from the landmarks' Frankfort horizontal when they have it
@@ -53,7 +53,8 @@ struct CaseImportError : std::runtime_error {
 CaseImportReport importCase(const CaseImportInput& input, const std::string& outDir);
 
 // The bone a template cuts: the skull for the maxilla's (le_fort_1, le_fort_2, segmented_maxilla),
-// the mandible for the others. Throws CaseImportError for an unknown template.
+// the mandible for the others. A unilateral split is named with its side (usso_left, usso_right).
+// Throws CaseImportError for an unknown template, and for "usso" without its side.
 std::string boneOfTemplate(const std::string& kind);
 
 }  // namespace orthosim

@@ -16,7 +16,9 @@ using nlohmann::json;
 namespace {
 
 json cutJson(const CutChoice& c) {
-  json cut = {{"template", c.kind}, {"bone", boneOfTemplate(c.kind)}};
+  if (c.kind == "usso" && c.side != "left" && c.side != "right")
+    throw CaseEditError("cuts: usso needs its side, \"left\" or \"right\"");
+  json cut = {{"template", c.kind}, {"bone", boneOfTemplate(c.kind == "usso" ? "usso_" + c.side : c.kind)}};
   if (c.offsetMm >= 0) cut["offset_mm"] = c.offsetMm;
   if (!c.side.empty()) cut["side"] = c.side;
   if (c.tiltDeg != 0) cut["tilt_deg"] = c.tiltDeg;

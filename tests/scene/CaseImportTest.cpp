@@ -89,6 +89,17 @@ TEST_F(CaseImport, ThePhantomsSurfacesPredictTheSameLeFortI) {
   test::expectSameLeFortI(match);
 }
 
+// A unilateral sagittal split is chosen with its side (the page's "USSO left" / "USSO right");
+// "usso" alone is refused before any work, naming the two.
+TEST_F(CaseImport, AUnilateralSplitIsChosenWithItsSide) {
+  CaseImportInput in = phantomInput();
+  in.cuts = {"le_fort_1", "usso_right"};
+  const CaseSpec spec = loadCaseFile(importCase(in, (dir_ / "usso").string()).caseFile);
+  EXPECT_EQ(spec.fragmentNames(), (std::vector<std::string>{"skull", "mandible", "maxilla", "ramus_right"}));
+  in.cuts = {"usso"};
+  EXPECT_NE(refusal(in, dir_ / "usso2").find("usso_left or usso_right"), std::string::npos);
+}
+
 TEST_F(CaseImport, MetresAreRefusedUnlessConfirmed) {
   CaseImportInput in = phantomInput();
   in.texture.clear();

@@ -110,12 +110,19 @@ TEST_F(CaseEditFile, ATiltTurnsTheLeFortILevel) {
     if (r.name == "maxilla")
       for (const CutPlane& p : r.bounds) found = found || (p.normal - expected).norm() < 1e-9;
   EXPECT_TRUE(found) << "the maxilla's upper bound is tilted";
+
+  CaseEdit usso;  // and a unilateral split on the left instead of the BSSO
+  usso.cuts = std::vector<CutChoice>{{"le_fort_1", -1, "", 0}, {"usso", -1, "left", 0}};
+  applyCaseEdit(file_, usso);
+  EXPECT_EQ(loadCaseFile(file_).fragmentNames().back(), "ramus_left");
 }
 
 TEST_F(CaseEditFile, RefusedEditsSayWhyAndChangeNothing) {
   CaseEdit unknown;
   unknown.cuts = std::vector<CutChoice>{{"le_fort_3", -1, "", 0}};
   EXPECT_NE(refusal(unknown).find("le_fort_3"), std::string::npos);
+  unknown.cuts = std::vector<CutChoice>{{"usso", -1, "", 0}};  // which side?
+  EXPECT_NE(refusal(unknown).find("side"), std::string::npos);
   unknown.cuts = std::vector<CutChoice>{{"bsso", -1, "", 5}};  // a sagittal split has no level to tilt
   EXPECT_NE(refusal(unknown).find("tilt_deg"), std::string::npos);
   unknown.cuts = std::vector<CutChoice>{{"le_fort_3", -1, "", 0}};
