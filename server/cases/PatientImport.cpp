@@ -157,9 +157,7 @@ ImportedPatient PatientImporter::import(const PatientUpload& upload) {
   ImportedPatient imported;
   try {
     imported.report = importCase(input, out.string());
-  } catch (const CaseImportError& e) {
-    throw PatientImportError("import_failed", "", withoutFolder(e.what(), staging.path.string() + "/"));
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // the importer's checks (CaseImportError) and the case file's
     throw PatientImportError("import_failed", "", withoutFolder(e.what(), staging.path.string() + "/"));
   }
   for (std::string& w : imported.report.warnings) w = withoutFolder(w, staging.path.string() + "/");
