@@ -125,6 +125,17 @@ struct CompareOptions {
 // 0 when measured, 1 on bad input (missing or unreadable file, empty mesh, bad case).
 int runCompare(const CompareOptions& options);
 
+struct PlanFromFaceOptions {
+  std::string casePath, targetsPath, outDir;
+  Resolution resolution = Resolution::Coarse;
+  std::string cacheDir;  // built tissue cache; empty: none
+  double translationLimitMm = 30, rotationLimitDeg = 30;
+};
+// Writes report.json (poses, residuals, iterations), plan.json (the case file's plan format) and
+// skin.obj (the predicted face). 0 when every target is reached, 1 on bad input, 2 when a target
+// cannot be reached (the best poses are written) or the solve fails.
+int runPlanFromFace(const PlanFromFaceOptions& options);
+
 struct ServeOptions {
   std::string host = "127.0.0.1";
   int port = 8080;         // 0: any free port; the chosen one is printed as "listening on http://HOST:PORT"

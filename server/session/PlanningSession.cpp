@@ -12,6 +12,7 @@
 #include "render/SurfaceDifference.hpp"
 #include "scene/LandmarkFrame.hpp"
 #include "scene/Osteotomy.hpp"
+#include "scene/PlanningFragments.hpp"
 #include "session/DragResponse.hpp"
 #include "session/FineJob.hpp"
 #include "session/SavedPlan.hpp"
@@ -26,11 +27,6 @@ using nlohmann::json;
 using Poses = std::map<std::string, AnatomicalPose>;
 
 namespace {
-
-struct FragmentInfo {
-  std::string name, bone;
-  Eigen::Vector3d pivot;
-};
 
 double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -49,7 +45,7 @@ struct PlanningSession::OpenCase {
   ReturnFreedMemory trimLast;  // first member: destroyed after the others
   std::string id;
   std::shared_ptr<const CaseModel> coarse;
-  std::vector<FragmentInfo> fragments;  // the movable ones, in scene order
+  std::vector<PlanningFragment> fragments;  // the movable ones, in scene order
   SkinFigureProbe probe;
   std::unique_ptr<Model> model;  // only the session's serial work touches it and lastGood
   SimState lastGood;
@@ -61,22 +57,17 @@ struct PlanningSession::OpenCase {
 
   std::vector<DragFragment> dragFragments() const {
     std::vector<DragFragment> out;
-    for (const FragmentInfo& f : fragments) out.push_back({f.name, f.pivot});
+    for (const PlanningFragment& f : fragments) out.push_back({f.name, f.pivot});
     return out;
   }
 
-  const FragmentInfo* fragment(const std::string& name) const {
-    for (const FragmentInfo& f : fragments)
+  const PlanningFragment* fragment(const std::string& name) const {
+    for (const PlanningFragment& f : fragments)
       if (f.name == name) return &f;
     return nullptr;
   }
   std::map<std::string, FragmentMotion> plan(const Poses& poses) const {
-    std::map<std::string, FragmentMotion> plan;
-    for (const FragmentInfo& f : fragments) {
-      auto it = poses.find(f.name);
-      plan[f.name] = motionFromPose(it == poses.end() ? AnatomicalPose{} : it->second, coarse->spec.frame, f.pivot);
-    }
-    return plan;
+    return planFromPoses(fragments, poses, coarse->spec.frame);
   }
 };
 
@@ -87,26 +78,6 @@ struct PlanningSession::FineResult {
   Eigen::Matrix3Xd x;
   Poses poses;
 };
-
-namespace {
-
-// The fragments a plan can move (the case scene's prescribed fragments), each turning about the
-// centroid of its bonded tissue nodes at rest.
-std::vector<FragmentInfo> movableFragments(const CaseModel& m) {
-  std::vector<FragmentInfo> out;
-  for (const FragmentSpec& f : m.scene.fragments) {
-    const auto bone =
-        std::find_if(m.spec.bones.begin(), m.spec.bones.end(), [&](const CaseBone& b) { return b.name == f.name; });
-    if (f.free || (bone != m.spec.bones.end() && bone->fixed)) continue;  // what is left of the skull stays
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (int n : f.nodes) c += m.scene.mesh.rest.col(n);
-    if (!f.nodes.empty()) c /= static_cast<double>(f.nodes.size());
-    out.push_back({f.name, m.spec.boneOf(f.name), c});
-  }
-  return out;
-}
-
-}  // namespace
 
 PlanningSession::PlanningSession(PlanningService& service, Send send)
     : service_(service),
@@ -259,7 +230,7 @@ void PlanningSession::startOpening(const std::string& caseId, const json& id) {
           c->coarse = self->service_.cases().model(caseId, Resolution::Coarse);
           if (cancel) return;
           progress("model", 0.6);
-          c->fragments = movableFragments(*c->coarse);
+          c->fragments = planningFragments(*c->coarse);
           c->probe = SkinFigureProbe(*c->coarse);
           c->lips = lipVertices(*c->coarse);
           c->model = std::make_unique<Model>(*self->service_.cases().coarsePrototype(caseId), Model::ShareImmutable{});
@@ -293,7 +264,7 @@ void PlanningSession::startOpening(const std::string& caseId, const json& id) {
 json PlanningSession::caseJson(const OpenCase& c) const {
   const CaseModel& m = *c.coarse;
   json fragments = json::array();
-  for (const FragmentInfo& f : c.fragments) {
+  for (const PlanningFragment& f : c.fragments) {
     auto it = poses_.find(f.name);
     fragments.push_back({{"name", f.name},
                          {"bone", f.bone},
@@ -373,7 +344,7 @@ Poses PlanningSession::readPoses(MessageReader r, const OpenCase& c) const {
     const std::string& name = item.key();
     if (!c.fragment(name)) {
       std::string known;
-      for (const FragmentInfo& f : c.fragments) known += (known.empty() ? "" : ", ") + f.name;
+      for (const PlanningFragment& f : c.fragments) known += (known.empty() ? "" : ", ") + f.name;
       throw ProtocolError(
           "unknown_fragment",
           r.pointer(name) + ": no movable fragment '" + name + "' in case '" + c.id + "'; movable fragments: " + known,
@@ -387,7 +358,7 @@ Poses PlanningSession::readPoses(MessageReader r, const OpenCase& c) const {
 json PlanningSession::posesJson() const {
   json j = json::object();
   if (!open_) return j;
-  for (const FragmentInfo& f : open_->fragments) {
+  for (const PlanningFragment& f : open_->fragments) {
     auto it = poses_.find(f.name);
     j[f.name] = poseToJson(it == poses_.end() ? AnatomicalPose{} : it->second);
   }
@@ -544,7 +515,7 @@ void PlanningSession::runPreview(const std::shared_ptr<OpenCase>& c, long long s
     requestFrame();
   }
   json posesOut = json::object();
-  for (const FragmentInfo& f : c->fragments) {
+  for (const PlanningFragment& f : c->fragments) {
     auto it = poses.find(f.name);
     posesOut[f.name] = poseToJson(it == poses.end() ? AnatomicalPose{} : it->second);
   }
