@@ -17,12 +17,14 @@
 namespace orthosim {
 namespace {
 
-// Levenberg-Marquardt damping, relative to the diagonal of J^T J (Marquardt's scaling).
+// Levenberg damping, relative to the largest singular value squared of the Jacobian.
 constexpr double kFirstDamping = 1e-3, kLeastDamping = 1e-9;
 constexpr int kStepTries = 6;
-// A trial step moves no value farther than this (mm or degrees): beyond it the linear response is a
-// poor guide, and the solve of a wild trial costs many iterations before it is refused.
-constexpr double kLargestStep = 3.0;
+// A trial step moves no value farther than this reach (mm or degrees): beyond it the linear
+// response is a poor guide, and the solve of a wild trial costs many iterations before it is
+// refused. The reach doubles after each accepted step it cut short (a long way in one direction,
+// e.g. to a bone limit), up to the largest.
+constexpr double kFirstReach = 3.0, kLargestReach = 24.0;
 // Stop when a step lowers the cost by less than this fraction: nothing left to gain.
 constexpr double kLeastGain = 1e-5;
 // A direction of the free pose values whose singular value is below this fraction of the largest
@@ -199,7 +201,7 @@ std::vector<bool> heldAtLimits(const FaceFit& fit, const Eigen::VectorXd& v, con
 
 // The damped Gauss-Newton step of the free values that are not held, clamped to the limits.
 Eigen::VectorXd dampedStep(const FaceFit& fit, const Eigen::VectorXd& v, const Eigen::MatrixXd& J,
-                           const Eigen::VectorXd& r, const std::vector<bool>& held, double damping) {
+                           const Eigen::VectorXd& r, const std::vector<bool>& held, double damping, double reach) {
   std::vector<Eigen::Index> cols;
   for (size_t j = 0; j < held.size(); ++j)
     if (!held[j]) cols.push_back(static_cast<Eigen::Index>(j));
@@ -215,7 +217,7 @@ Eigen::VectorXd dampedStep(const FaceFit& fit, const Eigen::VectorXd& v, const E
     if (!(sigma[i] > kVisible * top)) break;  // sorted, largest first
     step -= sigma[i] / (sigma[i] * sigma[i] + damping * top * top) * svd.matrixU().col(i).dot(r) * svd.matrixV().col(i);
   }
-  if (const double m = step.cwiseAbs().maxCoeff(); m > kLargestStep) step *= kLargestStep / m;
+  if (const double m = step.cwiseAbs().maxCoeff(); m > reach) step *= reach / m;
   for (size_t c = 0; c < cols.size(); ++c) {
     const int k = fit.free()[static_cast<size_t>(cols[c])];
     next[k] = std::clamp(v[k] + step[static_cast<Eigen::Index>(c)], -fit.limit(k), fit.limit(k));
@@ -269,7 +271,7 @@ FaceFitResult planFromFace(Model& model, const CaseModel& c, const std::vector<P
   }
   FaceFitResult out;
   Eigen::VectorXd r = fit.residual(*s);
-  double damping = kFirstDamping;
+  double damping = kFirstDamping, reach = kFirstReach;
   while (out.iterations < options.maxIterations && !control.cancelled()) {
     if (onIteration) onIteration({out.iterations, largest(fit.residuals(*s)), fit.poses(v), &*s});
     if (largest(fit.residuals(*s)) <= options.toleranceMm) break;
@@ -285,7 +287,7 @@ FaceFitResult planFromFace(Model& model, const CaseModel& c, const std::vector<P
     bool accepted = false;
     double moved = 0, gain = 0;
     for (int tries = 0; tries < kStepTries && !accepted && !control.cancelled(); ++tries) {
-      const Eigen::VectorXd next = dampedStep(fit, v, J, r, held, damping);
+      const Eigen::VectorXd next = dampedStep(fit, v, J, r, held, damping, reach);
       moved = (next - v).cwiseAbs().maxCoeff();
       if (moved < 1e-7) break;
       const std::optional<SimState> tried = fit.solve(next, *s);
@@ -293,6 +295,7 @@ FaceFitResult planFromFace(Model& model, const CaseModel& c, const std::vector<P
         const Eigen::VectorXd rt = fit.residual(*tried);
         if (rt.squaredNorm() < cost) {
           gain = (cost - rt.squaredNorm()) / cost;
+          if (moved >= reach * (1 - 1e-9)) reach = std::min(2 * reach, kLargestReach);
           v = next, s = tried, r = rt;
           damping = std::max(damping / 10, kLeastDamping);
           accepted = true;

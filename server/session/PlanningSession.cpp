@@ -9,12 +9,14 @@
 
 #include "eval/LandmarkError.hpp"
 #include "eval/SkinFigures.hpp"
+#include "planning/LandmarkProbe.hpp"
 #include "render/SurfaceDifference.hpp"
 #include "scene/LandmarkFrame.hpp"
 #include "scene/Osteotomy.hpp"
 #include "scene/PlanningFragments.hpp"
 #include "session/DragResponse.hpp"
 #include "session/FineJob.hpp"
+#include "session/OpenCase.hpp"
 #include "session/SavedPlan.hpp"
 #include "session/SkinExport.hpp"
 #include "session/SolveFiguresJson.hpp"
@@ -34,42 +36,7 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 
 json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-// Hands the freed heap back to the system once a session's case (its Model, factorisations and
-// states: hundreds of MB) is gone; glibc keeps it otherwise (2.4 GB held after 16 sessions).
-struct ReturnFreedMemory {
-  ~ReturnFreedMemory() { ::malloc_trim(0); }
-};
 }  // namespace
-
-struct PlanningSession::OpenCase {
-  ReturnFreedMemory trimLast;  // first member: destroyed after the others
-  std::string id;
-  std::shared_ptr<const CaseModel> coarse;
-  std::vector<PlanningFragment> fragments;  // the movable ones, in scene order
-  SkinFigureProbe probe;
-  std::unique_ptr<Model> model;  // only the session's serial work touches it and lastGood
-  SimState lastGood;
-  // Guarded by the session's mutex: the newest converged preview, for exports and comparisons.
-  std::shared_ptr<const Eigen::Matrix3Xd> previewX;
-  Poses previewPoses;
-  std::shared_ptr<const DragResponse> drag;  // its linear response, for frames during a drag
-  std::vector<int> lips;                     // display-skin vertices where the drag error is reported
-
-  std::vector<DragFragment> dragFragments() const {
-    std::vector<DragFragment> out;
-    for (const PlanningFragment& f : fragments) out.push_back({f.name, f.pivot});
-    return out;
-  }
-
-  const PlanningFragment* fragment(const std::string& name) const {
-    for (const PlanningFragment& f : fragments)
-      if (f.name == name) return &f;
-    return nullptr;
-  }
-  std::map<std::string, FragmentMotion> plan(const Poses& poses) const {
-    return planFromPoses(fragments, poses, coarse->spec.frame);
-  }
-};
 
 struct PlanningSession::FineResult {
   long long job = 0;
@@ -181,7 +148,8 @@ void PlanningSession::dispatch(const std::string& type, MessageReader& r, const 
                                                           {"export", &PlanningSession::exportSkin},
                                                           {"view", &PlanningSession::view},
                                                           {"pick", &PlanningSession::pick},
-                                                          {"edit_case", &PlanningSession::editCase}};
+                                                          {"edit_case", &PlanningSession::editCase},
+                                                          {"plan_from_face", &PlanningSession::planFromFace}};
   auto it = handlers.find(type);
   if (it == handlers.end()) {
     std::string known;
@@ -233,6 +201,7 @@ void PlanningSession::startOpening(const std::string& caseId, const json& id) {
           c->fragments = planningFragments(*c->coarse);
           c->probe = SkinFigureProbe(*c->coarse);
           c->lips = lipVertices(*c->coarse);
+          c->faceLandmarks = skinLandmarkNames(*c->coarse);
           c->model = std::make_unique<Model>(*self->service_.cases().coarsePrototype(caseId), Model::ShareImmutable{});
           c->lastGood = c->model->restState();
         } catch (const std::exception& e) {
@@ -305,6 +274,7 @@ json PlanningSession::caseJson(const OpenCase& c) const {
           {"landmarks", std::move(landmarks)},
           {"landmarks_mm", std::move(landmarkPositions)},
           {"landmarks_needed", std::move(needed)},
+          {"face_landmarks", c.faceLandmarks},
           {"frame_from_landmarks", std::move(landmarkFrame)},
           {"editable", entry && entry->source == "import"},
           {"coarse",
