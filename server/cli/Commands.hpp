@@ -104,6 +104,16 @@ struct CohortBenchOptions {
 // a patient could not be (its row says why; the others are still measured and written).
 int runCohortBench(const CohortBenchOptions& options);
 
+struct FaceBenchOptions {
+  int patients = 1000;  // the first N cohort patients
+  int repeats = 3;      // fits per patient (median time reported)
+  std::string dataDir;  // cohort cases and tissue cache (kept); empty: a temporary folder
+  std::string jsonPath;
+};
+// `orthosim bench face`: planning from the face from rest to each cohort plan's predicted
+// landmarks. 0 when every patient is measured, 2 when one could not be.
+int runFaceBench(const FaceBenchOptions& options);
+
 // Writes the built-in phantom head (variant N) as a surface-based case under outDir.
 int runPhantom(int variant, const std::string& outDir);
 
