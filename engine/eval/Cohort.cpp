@@ -4,6 +4,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "mesh/AtomicFile.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseFile.hpp"
 
@@ -145,13 +146,7 @@ std::string writeCohortCase(const CohortPatient& patient, const std::string& dir
     plan[m.fragment] = motion;
   }
   c["plan"] = plan;
-  const std::filesystem::path tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << c.dump(2) << "\n";
-    if (!out.flush()) throw std::runtime_error(tmp.string() + ": cannot write the cohort case");
-  }
-  std::filesystem::rename(tmp, path);
+  writeFileAtomically(path, c.dump(2) + "\n");
   return path;
 }
 

@@ -1,9 +1,8 @@
 #include "phantom/PhantomCase.hpp"
 
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
+
+#include "mesh/AtomicFile.hpp"
 
 namespace orthosim {
 
@@ -37,14 +36,7 @@ std::string writePhantomCase(int variant, const std::string& dir) {
   const Phantom phantom = makePhantom(options);
   writePhantom(phantom, dir);
   const std::filesystem::path path = std::filesystem::path(dir) / "case.json";
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << phantomCaseJson(phantom).dump(2) << "\n";
-    out.close();
-    if (!out) throw std::runtime_error(tmp.string() + ": cannot write the phantom case: " + std::strerror(errno));
-  }
-  std::filesystem::rename(tmp, path);
+  writeFileAtomically(path, phantomCaseJson(phantom).dump(2) + "\n");
   return path.string();
 }
 

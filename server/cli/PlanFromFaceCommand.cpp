@@ -1,12 +1,12 @@
 // `orthosim plan-from-face CASE.json --targets T.json --out DIR`: the fragment poses whose predicted
 // face puts the targeted soft-tissue landmarks where they are wanted (engine/planning/PlanFromFace).
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 
 #include "cli/Commands.hpp"
 #include "math/Angles.hpp"
+#include "mesh/AtomicFile.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "planning/FaceRequestJson.hpp"
 #include "scene/CaseModel.hpp"
@@ -17,16 +17,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-void writeText(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw std::runtime_error(tmp.string() + ": write failed");
-  }
-  fs::rename(tmp, path);
-}
 
 // The case file's plan format (docs/scene-format.md), which `solve`, `render` and `bench --plan` read.
 json casePlanJson(const std::map<std::string, FragmentMotion>& plan) {
@@ -93,9 +83,9 @@ int runPlanFromFace(const PlanFromFaceOptions& o) {
     json report = faceFitJson(r);
     report["case"] = o.casePath;
     report["resolution"] = resolutionName(o.resolution);
-    writeText(fs::path(o.outDir) / "report.json", report.dump(2) + "\n");
-    writeText(fs::path(o.outDir) / "plan.json",
-              casePlanJson(planFromPoses(fragments, r.poses, c->spec.frame)).dump(2) + "\n");
+    writeFileAtomically(fs::path(o.outDir) / "report.json", report.dump(2) + "\n");
+    writeFileAtomically(fs::path(o.outDir) / "plan.json",
+                        casePlanJson(planFromPoses(fragments, r.poses, c->spec.frame)).dump(2) + "\n");
     if (c->tissue.skin.numVertices() > 0) {
       const fs::path tmp = fs::path(o.outDir) / "skin.tmp.obj";
       exportSurface(c->deformedSkin(r.state.x), tmp.string());

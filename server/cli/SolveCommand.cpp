@@ -1,9 +1,9 @@
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include "cli/Commands.hpp"
 #include "eval/ResultJson.hpp"
+#include "mesh/AtomicFile.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "mesh/TetgenIO.hpp"
 #include "scene/CaseModel.hpp"
@@ -12,21 +12,6 @@
 
 namespace orthosim::cli {
 namespace fs = std::filesystem;
-
-namespace {
-
-// Written next to the target and renamed over it, so a reader never sees half a file.
-void writeAtomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw std::runtime_error(tmp.string() + ": write failed");
-  }
-  fs::rename(tmp, path);
-}
-
-}  // namespace
 
 namespace {
 
@@ -99,7 +84,7 @@ int runSolve(const std::string& scenePath, const std::string& outDir, const Solv
       }
       json["case"] = caseJson(*caseModel);
     }
-    writeAtomically(fs::path(outDir) / "result.json", json.dump(2) + "\n");
+    writeFileAtomically(fs::path(outDir) / "result.json", json.dump(2) + "\n");
   } catch (const std::exception& e) {
     std::cerr << "orthosim: cannot write results to " << outDir << ": " << e.what() << "\n";
     return 1;
