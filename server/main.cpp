@@ -207,6 +207,25 @@ int main(int argc, char** argv) {
   serve->add_flag("!--no-warm-up", serveOptions.warmUp, "Do not build the phantom's coarse model at start");
   serve->add_option("--max-upload-mb", serveOptions.maxUploadMb, "Largest patient upload (POST /api/patients), MiB")
       ->check(CLI::Range(1, 4096));
+  serve->add_option("--redis", serveOptions.redis,
+                    "redis://HOST:PORT: fine jobs go to `orthosim worker` processes through Redis Streams "
+                    "(default: run them in this process)");
+
+  orthosim::cli::WorkerOptions workerOptions;
+  workerOptions.builtinDir = ORTHOSIM_CASES_DIR;
+  auto* worker = app.add_subcommand("worker", "Run fine jobs from Redis Streams (serve --redis) on this machine");
+  worker->add_option("--redis", workerOptions.redis, "redis://HOST:PORT, the same as the servers'")->required();
+  worker->add_option("--data", workerOptions.dataDir,
+                     "The servers' data folder (shared: cases, mesh cache, results; default: $ORTHOSIM_DATA, else "
+                     "~/.local/share/orthosim)");
+  worker->add_option("--cases", workerOptions.casesDir, "The servers' --cases folder, if they use one");
+  worker->add_option("--builtin-cases", workerOptions.builtinDir, "The servers' --builtin-cases folder");
+  worker->add_option("--concurrency", workerOptions.concurrency, "Jobs at once")->check(CLI::Range(1, 64));
+  worker
+      ->add_option("--visibility-timeout", workerOptions.visibilitySeconds,
+                   "Seconds after which a job whose worker stopped (died) goes to another worker (default 60)")
+      ->check(CLI::Range(0.5, 86400.0));
+  worker->add_option("--name", workerOptions.name, "Name of this worker in Redis (default: HOST-PID)");
 
   try {
     app.parse(argc, argv);
@@ -240,6 +259,7 @@ int main(int argc, char** argv) {
       return orthosim::cli::runImport(importInput, importOut);
     }
     if (*serve) return orthosim::cli::runServe(serveOptions);
+    if (*worker) return orthosim::cli::runWorker(workerOptions);
     if (*render) {
       renderOptions.resolution = renderResolution == "fine" ? orthosim::Resolution::Fine : orthosim::Resolution::Coarse;
       if (renderNoCache) renderOptions.cacheDir.clear();

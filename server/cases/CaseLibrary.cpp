@@ -145,6 +145,12 @@ std::shared_ptr<const Model> CaseLibrary::coarsePrototype(const std::string& id)
   return once(prototypes_, id, [&] { return std::make_shared<const Model>(coarse->scene); });
 }
 
+CaseSpec CaseLibrary::spec(const std::string& id) {
+  const std::optional<CaseEntry> entry = find(id);
+  if (!entry) throw std::invalid_argument("unknown case '" + id + "'");
+  return loadCaseFile(caseFile(*entry));
+}
+
 bool CaseLibrary::isBuilt(const std::string& id, Resolution resolution) const {
   const std::lock_guard<std::mutex> lock(mutex_);
   auto it = models_.find({id, resolution});

@@ -36,6 +36,10 @@ class CaseLibrary {
   // building throws (SceneError naming the case file and the defect).
   std::shared_ptr<const CaseModel> model(const std::string& id, Resolution resolution);
   bool isBuilt(const std::string& id, Resolution resolution) const;
+  // The case file as it is on disk now (written first for a built-in case), without building
+  // anything: what a worker hashes to tell whether a job was planned on this case. Throws as
+  // model() does.
+  CaseSpec spec(const std::string& id);
   // The solver model of the coarse case, built once: sessions make theirs from it with
   // Model(prototype, Model::ShareImmutable{}) and share its scene, energy, couplings, scatter
   // pattern, rest factorisation and contact surfaces. Nobody solves with the prototype itself.

@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include <filesystem>
+#include "cases/CaseCatalog.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/CaseImport.hpp"
 
@@ -164,9 +166,29 @@ struct ServeOptions {
   int previewIterations = 100;       // what one preview may spend (server::PlanningOptions)
   double previewSeconds = 15;
   int maxUploadMb = 256;  // a patient's upload from the page (net::HttpLimits::uploadBytes)
+  std::string redis;      // "redis://HOST:PORT": fine jobs on `orthosim worker` processes; empty: in process
 };
 // Serves HTTP (and later the WebSocket API) until SIGINT or SIGTERM; 0 on a clean stop, 1 when
 // the server cannot start (bad host, port taken, no web folder).
 int runServe(const ServeOptions& options);
+
+// The cases of `serve` and `worker`: the built-in ones (the ArtiSynth face when builtinDir holds
+// it) and the case folders of casesDir, with what is skipped said on stderr as `orthosim COMMAND`.
+std::vector<server::CaseEntry> caseCatalog(const std::string& builtinDir, const std::string& casesDir,
+                                           const std::string& command);
+// dataDir, or $ORTHOSIM_DATA, else $XDG_DATA_HOME/orthosim, else ~/.local/share/orthosim; absolute.
+std::filesystem::path dataDirOrDefault(const std::string& dataDir);
+
+struct WorkerOptions {
+  std::string redis;  // redis://HOST:PORT
+  std::string dataDir;
+  std::string casesDir, builtinDir;  // as for serve: the same cases the servers offer
+  int concurrency = 1;
+  double visibilitySeconds = 60;  // a job whose worker stops claiming it this long goes to another
+  std::string name;               // consumer name; empty: <host>-<pid>
+};
+// Runs fine jobs from Redis until SIGINT or SIGTERM (0); 1 when it cannot start (bad address,
+// Redis unreachable, data folder not writable), with the reason on stderr.
+int runWorker(const WorkerOptions& options);
 
 }  // namespace orthosim::cli

@@ -33,24 +33,12 @@ net::ServerOptions serverOptions(const ServeOptions& options) {
   server.insecure = options.insecure;
   server.access.allowedOrigins = options.allowedOrigins;
   server.access.allowedHosts = options.allowedHosts;
-  server.planning.dataDir = fs::absolute(options.dataDir.empty() ? defaultDataDir() : fs::path(options.dataDir));
+  server.planning.dataDir = dataDirOrDefault(options.dataDir);
   fs::create_directories(server.planning.dataDir);
-  server.planning.cases = server::builtInCases(options.builtinDir);
-  if (!options.builtinDir.empty() && server.planning.cases.size() == server::builtInCases({}).size())
-    std::cerr << "orthosim serve: no ArtiSynth face in " << options.builtinDir << " (--builtin-cases): phantom only\n";
-  if (!options.casesDir.empty()) {
-    std::vector<std::string> skipped;
-    for (server::CaseEntry& c : server::folderCases(options.casesDir, &skipped)) {
-      if (c.id.rfind("phantom-", 0) == 0 || c.id == server::kArtisynthFaceId) {
-        std::cerr << "orthosim serve: case folder " << c.id << " skipped: the name is a built-in case's\n";
-        continue;
-      }
-      server.planning.cases.push_back(std::move(c));
-    }
-    for (const std::string& s : skipped) std::cerr << "orthosim serve: skipped " << s << "\n";
-  }
+  server.planning.cases = caseCatalog(options.builtinDir, options.casesDir, "serve");
   server.limits.uploadBytes = static_cast<std::size_t>(options.maxUploadMb) * 1024 * 1024;
   server.planning.fineWorkers = options.fineWorkers;
+  server.planning.redisUrl = options.redis;
   server.planning.maxSessions = options.maxSessions;
   server.webSocket.unopenedTimeout = std::chrono::seconds(options.unopenedTimeoutSeconds);
   server.planning.previewIterations = options.previewIterations;
@@ -60,6 +48,30 @@ net::ServerOptions serverOptions(const ServeOptions& options) {
 }
 
 }  // namespace
+
+std::vector<server::CaseEntry> caseCatalog(const std::string& builtinDir, const std::string& casesDir,
+                                           const std::string& command) {
+  std::vector<server::CaseEntry> cases = server::builtInCases(builtinDir);
+  if (!builtinDir.empty() && cases.size() == server::builtInCases({}).size())
+    std::cerr << "orthosim " << command << ": no ArtiSynth face in " << builtinDir
+              << " (--builtin-cases): phantom only\n";
+  if (!casesDir.empty()) {
+    std::vector<std::string> skipped;
+    for (server::CaseEntry& c : server::folderCases(casesDir, &skipped)) {
+      if (c.id.rfind("phantom-", 0) == 0 || c.id == server::kArtisynthFaceId) {
+        std::cerr << "orthosim " << command << ": case folder " << c.id << " skipped: the name is a built-in case's\n";
+        continue;
+      }
+      cases.push_back(std::move(c));
+    }
+    for (const std::string& s : skipped) std::cerr << "orthosim " << command << ": skipped " << s << "\n";
+  }
+  return cases;
+}
+
+fs::path dataDirOrDefault(const std::string& dataDir) {
+  return fs::absolute(dataDir.empty() ? defaultDataDir() : fs::path(dataDir));
+}
 
 int runServe(const ServeOptions& options) {
   try {

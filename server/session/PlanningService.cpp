@@ -3,6 +3,8 @@
 #include <boost/asio/post.hpp>
 #include <iostream>
 
+#include "jobs/JobMessage.hpp"
+#include "jobs/RedisJobQueue.hpp"
 #include "session/DataFolderLeftovers.hpp"
 
 namespace orthosim::server {
@@ -11,7 +13,6 @@ PlanningService::PlanningService(PlanningOptions options)
     : options_(std::move(options)),
       lock_(options_.dataDir),
       cases_(options_.cases, options_.dataDir),
-      fineJobs_(options_.fineWorkers, options_.fineQueue, /*niceness=*/10),
       plans_(options_.dataDir / "plans"),
       patients_(options_.dataDir, cases_),
       previewPool_(static_cast<std::size_t>(std::max(1, options_.previewThreads))) {
@@ -27,6 +28,15 @@ PlanningService::PlanningService(PlanningOptions options)
     }
   }
   for (const std::string& s : skipped) std::cerr << "orthosim serve: skipped imported patient " << s << "\n";
+  if (options_.redisUrl.empty()) {
+    fineJobs_ = std::make_unique<InProcessFineJobs>(cases_, options_.fineWorkers, options_.fineQueue);
+  } else {
+    auto redis =
+        std::make_unique<RedisFineJobs>(parseRedisUrl(options_.redisUrl), cases_, options_.dataDir, options_.fineQueue);
+    std::cerr << "orthosim serve: fine jobs go to the workers through Redis at " << options_.redisUrl
+              << " (reply stream " << replyStreamName(redis->serverId()) << ")\n";
+    fineJobs_ = std::move(redis);
+  }
 }
 
 PlanningService::~PlanningService() { shutdown(); }
@@ -44,7 +54,7 @@ nlohmann::json PlanningService::health(const std::string& version) const {
   return {{"status", "ok"},
           {"version", version},
           {"sessions", sessions_.load()},
-          {"jobs", {{"running", fineJobs_.running()}, {"queued", fineJobs_.queued()}}}};
+          {"jobs", {{"running", fineJobs_->running()}, {"queued", fineJobs_->queued()}}}};
 }
 
 void PlanningService::warmUp(const std::string& caseId) {
@@ -59,7 +69,7 @@ void PlanningService::warmUp(const std::string& caseId) {
 }
 
 void PlanningService::shutdown() {
-  fineJobs_.shutdown();
+  if (fineJobs_) fineJobs_->shutdown();
   previewPool_.stop();  // queued previews never start; running ones see their session's cancel
   previewPool_.join();
   renderPool_.stop();

@@ -13,10 +13,10 @@
 
 #include "cases/CaseLibrary.hpp"
 #include "cases/PatientImport.hpp"
+#include "jobs/FineJobs.hpp"
 #include "session/AnatomicalPose.hpp"
 #include "session/DataFolderLock.hpp"
 #include "session/ExportStore.hpp"
-#include "session/JobQueue.hpp"
 #include "session/PlanStore.hpp"
 
 namespace orthosim::server {
@@ -27,6 +27,9 @@ struct PlanningOptions {
   int previewThreads = 2;  // sessions' coarse solves and case openings
   int fineWorkers = 1;     // fine jobs at once (each uses every core in its factorisations)
   int fineQueue = 8;       // fine jobs waiting at most
+  // Empty: fine jobs on this machine's pool. "redis://HOST:PORT": on `orthosim worker` processes
+  // through Redis Streams (jobs/RedisJobQueue.hpp); the server does not start without it.
+  std::string redisUrl;
   int maxSessions = 32;
   PoseLimits limits;
   // What one preview may spend (both tries together: from the last preview, then from rest): an
@@ -46,7 +49,7 @@ class PlanningService {
   boost::asio::thread_pool& previewPool() { return previewPool_; }
   // One thread draws every session's frames: each session's renderer is used by one thread.
   boost::asio::thread_pool& renderPool() { return renderPool_; }
-  JobQueue& fineJobs() { return fineJobs_; }
+  FineJobs& fineJobs() { return *fineJobs_; }
   PlanStore& plans() { return plans_; }
   PatientImporter& patients() { return patients_; }
   // Imports run here, one at a time, off the network threads (checking a patient's surfaces takes
@@ -72,7 +75,7 @@ class PlanningService {
   PlanningOptions options_;
   DataFolderLock lock_;  // before anything that writes into the data folder
   CaseLibrary cases_;
-  JobQueue fineJobs_;
+  std::unique_ptr<FineJobs> fineJobs_;
   PlanStore plans_;
   ExportStore exports_;
   PatientImporter patients_;

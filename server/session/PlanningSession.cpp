@@ -546,30 +546,25 @@ void PlanningSession::confirm(MessageReader& r, const json& id) {
     poses = poses_;
   }
   auto self = shared_from_this();
-  const std::optional<long long> job = service_.fineJobs().submit(
-      id_, [self, c, poses](long long job, const std::atomic<bool>& cancel) { self->runFine(job, c, poses, cancel); },
-      [self](long long job) {
-        self->reply({{"type", "job_cancelled"}, {"job", job}, {"phase", "queued"}}, nullptr);
-      });
-  if (!job) throw ProtocolError("busy", "the fine-job queue is full; try again when a job has finished");
-  reply({{"type", "job_queued"},
-         {"job", *job},
-         {"case", c->id},
-         {"position", service_.fineJobs().position(*job).value_or(0)}},
-        id);
-}
-
-void PlanningSession::runFine(long long job, const std::shared_ptr<OpenCase>& c, Poses poses,
-                              const std::atomic<bool>& cancel) {
+  FineJobCallbacks callbacks;
+  callbacks.report = [self](json message) { self->reply(std::move(message), nullptr); };
+  callbacks.done = [self, c, poses](long long job, FineSolve solved) {
+    try {
+      self->publishFine(job, c, poses, std::move(solved));
+    } catch (const std::exception& e) {
+      self->reply({{"type", "job_failed"}, {"job", job}, {"message", std::string("the fine job failed: ") + e.what()}},
+                  nullptr);
+    }
+  };
+  std::optional<SubmittedJob> job;
   try {
-    const JobReport report = [this](json message) { reply(std::move(message), nullptr); };
     // Same case file as the coarse model: same frame and pivots.
-    std::optional<FineSolve> solved = runFineJob(job, service_.cases(), c->id, c->plan(poses), cancel, report);
-    if (solved) publishFine(job, c, std::move(poses), std::move(*solved));
-  } catch (const std::exception& e) {
-    reply({{"type", "job_failed"}, {"job", job}, {"message", std::string("the fine job failed: ") + e.what()}},
-          nullptr);
+    job = service_.fineJobs().submit({id_, c->id, c->plan(poses)}, std::move(callbacks));
+  } catch (const JobsUnavailable& e) {
+    throw ProtocolError("jobs_unavailable", e.what());
   }
+  if (!job) throw ProtocolError("busy", "the fine-job queue is full; try again when a job has finished");
+  reply({{"type", "job_queued"}, {"job", job->job}, {"case", c->id}, {"position", job->position}}, id);
 }
 
 // The newest fine result of the session (for exports), compared with the preview of the same poses.

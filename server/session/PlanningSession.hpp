@@ -82,8 +82,6 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   void schedulePreview(const nlohmann::json& id);
   void runPreview(const std::shared_ptr<OpenCase>& c, long long seq, std::map<std::string, AnatomicalPose> poses,
                   const nlohmann::json& id, const std::atomic<bool>& cancel);
-  void runFine(long long job, const std::shared_ptr<OpenCase>& c, std::map<std::string, AnatomicalPose> poses,
-               const std::atomic<bool>& cancel);
   void publishFine(long long job, const std::shared_ptr<OpenCase>& c, std::map<std::string, AnatomicalPose> poses,
                    FineSolve solved);
   nlohmann::json posesJson() const;  // with mutex_ held
