@@ -88,14 +88,16 @@ std::optional<SubmittedJob> RedisFineJobs::submit(FineJobRequest request, FineJo
   return submitted;
 }
 
-void RedisFineJobs::setCancel(const Job& job) {
+bool RedisFineJobs::setCancel(const Job& job) {
   try {
     RedisConnection& redis = commands();
     redis.command({"SET", cancelKey(job.name), "1", "EX", "86400"});
     if (!job.started && !job.entry.empty()) redis.command({"XDEL", kJobStream, job.entry});
+    return true;
   } catch (const std::exception& e) {
     commands_.reset();
     std::cerr << "orthosim serve: cannot cancel job " << job.name << " on Redis: " << e.what() << "\n";
+    return false;
   }
 }
 
@@ -159,7 +161,8 @@ void RedisFineJobs::shutdown() {
     jobs_.clear();
   }
   const std::lock_guard<std::mutex> lock(commandMutex_);
-  for (const Job& j : gone) setCancel(j);  // nobody will read their outcome
+  for (const Job& j : gone)    // nobody will read their outcome
+    if (!setCancel(j)) break;  // Redis away: stopping does not wait for it job by job
   try {
     if (commands_) commands_->command({"DEL", replyStream_});
   } catch (const std::exception&) {

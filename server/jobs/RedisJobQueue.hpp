@@ -53,7 +53,7 @@ class RedisFineJobs : public FineJobs {
   void failAll(const std::string& why);
   // With commandMutex_ held: the submit/cancel connection, connected again when it was lost.
   RedisConnection& commands();
-  void setCancel(const Job& job);  // with commandMutex_ held
+  bool setCancel(const Job& job);  // with commandMutex_ held; false when Redis cannot be reached
 
   RedisAddress address_;
   CaseLibrary& cases_;
