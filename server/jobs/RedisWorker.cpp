@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include "cases/PatientImport.hpp"
@@ -144,18 +145,22 @@ void RedisWorker::handle(RedisConnection& redis, const std::string& consumer, co
                          const std::atomic<bool>& stop) {
   if (entry.array.empty()) return;
   const std::string entryId = entry.array[0].string;
-  std::string raw;
+  std::optional<std::string> raw;
   if (entry.array.size() >= 2)
     for (size_t k = 0; k + 1 < entry.array[1].array.size(); k += 2)
       if (entry.array[1].array[k].string == "job") raw = entry.array[1].array[k + 1].string;
+  if (!raw) {
+    refuse(redis, entryId, "", "", "not a job: the entry has no field 'job'");
+    return;
+  }
   JobMessage job;
   try {
-    job = decodeJobMessage(raw);
+    job = decodeJobMessage(*raw);
   } catch (const BadJobMessage& e) {
     // Answered only when the message names a job and one of our reply streams.
     std::string replyStream, name;
     try {
-      const json j = json::parse(raw);
+      const json j = json::parse(*raw);
       const std::string stream = j.value("reply_stream", ""), candidate = j.value("job", "");
       if (stream.rfind("orthosim:replies:", 0) == 0 && stream.size() < 200 && candidate.size() < 200) {
         replyStream = stream;

@@ -80,7 +80,11 @@ TEST(JobMessage, MalformedAndForeignMessagesAreRefusedSayingWhere) {
   expectRefused(withField("reply_stream", "someone:else"), "/reply_stream");
   expectRefused(withField("plan", nullptr), "/plan: required");
   expectRefused(withField("plan", json::array()), "/plan");
-  expectRefused(withField("plan", {{"maxilla", {{"translation_mm", {1, 2}}}}}), "/plan/maxilla/translation_mm");
+  expectRefused(withField("plan", {{"maxilla", {{"translation_mm", {1, 2}}}}}), "/plan/maxilla/rotation_rad: required");
+  expectRefused(
+      withField("plan",
+                {{"maxilla", {{"translation_mm", {1, 2}}, {"rotation_rad", {0, 0, 0}}, {"center_mm", {0, 0, 0}}}}}),
+      "/plan/maxilla/translation_mm: must be an array of 3");
   expectRefused(
       withField("plan", {{"maxilla",
                           {{"translation_mm", {1, 2, "x"}}, {"rotation_rad", {0, 0, 0}}, {"center_mm", {0, 0, 0}}}}}),
