@@ -235,6 +235,8 @@ void RedisWorker::handle(RedisConnection& redis, const std::string& consumer, co
   if (!failure.empty()) {
     say("job " + job.job + " failed: " + failure);
     report({{"type", "job_failed"}, {"message", "the fine job failed: " + failure}});
+  } else if (!solved && cancel) {
+    say("job " + job.job + " cancelled");
   } else if (solved) {
     try {
       writeResultNodes(options_.dataDir / resultFileName(job.job), solved->x);
