@@ -233,7 +233,11 @@ function flushPoses() {
 function showSolveState(shown) {
   const last = state.lastSolve;
   const solved = last ? `last solve ${last.seconds.toFixed(2)} s at ${last.at}` : "no solve yet";
-  const text = { linear: `linear drag view, refining… (${solved})`, converged: `converged (${solved})`, rest: "rest pose" };
+  const text = {
+    linear: `linear drag view, refining… (${solved})`, converged: `converged (${solved})`, rest: "rest pose",
+    band_low: "prediction band: low envelope", band_high: "prediction band: high envelope",
+    band_nominal: "prediction band: nominal prediction",
+  };
   $("solve-state").textContent = text[shown] || solved;
   $("solve-state").dataset.state = shown || "";
 }
