@@ -33,6 +33,16 @@ ParameterDesign parameterDesign(const DesignNominal& nominal, const DesignOption
     d.parameters.push_back(
         {BandParameter::ContactStiffness, "contact_stiffness_factor", std::pow(0.3, s), 1.0, std::pow(3.0, s), false});
   }
+  if (nominal.bondDistance > 0) {
+    const double b = nominal.bondDistance;
+    d.parameters.push_back({BandParameter::BondDistance, "bond_distance_mm", b - s, b, b + s, false});
+    if (!(b - s > 0)) {
+      std::ostringstream m;
+      m << "band design: the bond distance would go down to " << b - s
+        << " mm: it must stay above 0 (lower range_scale)";
+      throw std::invalid_argument(m.str());
+    }
+  }
   const ParameterRange& p = d.parameters[0];
   if (!(p.low > 0 && p.high < 0.5)) {
     std::ostringstream m;
@@ -59,8 +69,8 @@ ParameterDesign parameterDesign(const DesignNominal& nominal, const DesignOption
     }
   if (!options.corners) return d;
   // Two parameters: the full 2^2 factorial. Three or more: the half fraction 2^(n-1) whose last
-  // parameter's level is the product of the others' (resolution III with three, IV with four: no
-  // main effect is aliased with another).
+  // parameter's level is the product of the others' (resolution III with three, IV with four, V
+  // with five: no main effect is aliased with another).
   const int free = n <= 2 ? n : n - 1;
   for (int bits = 0; bits < (1 << free); ++bits) {
     DesignRun r{"corner " + std::to_string(bits + 1), "corner", std::vector<int>(static_cast<size_t>(n), 0), -1};

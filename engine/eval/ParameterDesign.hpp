@@ -15,11 +15,12 @@ enum class BandParameter {
   BlendWidth,        // mm: how far the bond to the bone reaches past a cut
   LipsBonded,        // the lips' inner surface stuck to the teeth instead of sliding (two levels)
   ContactStiffness,  // factor on the case's contact penalty stiffness
+  BondDistance,      // mm: how far from a bone surface given tetrahedra are bonded to it (volume cases)
 };
 
 struct ParameterRange {
   BandParameter parameter;
-  std::string name;  // poisson_ratio, blend_width_mm, lips_bonded, contact_stiffness_factor
+  std::string name;  // poisson_ratio, blend_width_mm, lips_bonded, contact_stiffness_factor, bond_distance_mm
   double low = 0, nominal = 0, high = 0;
   bool twoLevel = false;  // lips: low is the nominal (sliding), high bonded
 };
@@ -44,12 +45,15 @@ struct DesignNominal {
   double poissonRatio = 0.47;
   double blendWidth = 10.0;  // mm
   bool hasContact = false;   // a scene without contact gets no contact parameters
+  // A volume case whose bonded nodes are derived from a bone surface: their distance (mm);
+  // 0: none (surface cases, whose bonded nodes are the Boolean's vertices on the bone).
+  double bondDistance = 0;
 };
 
 struct DesignOptions {
   // Scales every range about the nominal: 1 the ranges (Poisson's ratio +-0.02, blend
-  // width +-5 mm, contact stiffness x0.3 to x3), 0.5 half of each (the stiffness factors' logarithms
-  // halved). The lips' two levels do not scale.
+  // width +-5 mm, contact stiffness x0.3 to x3, bond distance +-1 mm), 0.5 half of each (the stiffness factors'
+  // logarithms halved). The lips' two levels do not scale.
   double rangeScale = 1.0;
   bool corners = true;  // the fractional factorial's corners besides the one-at-a-time runs
 };

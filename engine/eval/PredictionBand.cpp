@@ -23,6 +23,17 @@ int indexOf(const ParameterDesign& d, BandParameter p) {
 
 }  // namespace
 
+DesignNominal designNominal(const CaseModel& model) {
+  DesignNominal n{model.spec.poissonRatio, model.spec.blendWidth, !model.scene.contacts.empty(), 0};
+  if (model.spec.isVolume())
+    for (const CaseBone& b : model.spec.bones)
+      if (b.derive) {
+        n.bondDistance = b.bondDistance;
+        break;
+      }
+  return n;
+}
+
 int PredictionBand::converged() const {
   int n = 0;
   for (const BandRun& r : runs) n += r.converged ? 1 : 0;
@@ -38,12 +49,20 @@ Scene bandScene(const CaseModel& model, const ParameterDesign& design, const Des
   };
   Scene scene;
   const double blend = value(BandParameter::BlendWidth).value_or(model.spec.blendWidth);
-  if (blend == model.spec.blendWidth) {
+  const DesignNominal nominal = designNominal(model);
+  const double bond = value(BandParameter::BondDistance).value_or(nominal.bondDistance);
+  if (blend == model.spec.blendWidth && bond == nominal.bondDistance) {
     scene = model.scene;  // the couplings do not change
   } else {
     CaseSpec spec = model.spec;
     spec.blendWidth = blend;
-    scene = caseScene(spec, model.tissue);
+    if (bond == nominal.bondDistance) {
+      scene = caseScene(spec, model.tissue);
+    } else {  // the same tetrahedra read again, their bonded nodes derived at this distance
+      for (CaseBone& b : spec.bones)
+        if (b.derive) b.bondDistance = bond;
+      scene = caseScene(spec, buildCaseTissue(spec, model.resolution));
+    }
   }
   scene.poissonRatio = value(BandParameter::PoissonRatio).value_or(model.spec.poissonRatio);
   if (const std::optional<double> factor = value(BandParameter::ContactStiffness)) {
@@ -65,8 +84,7 @@ PredictionBand predictionBand(const CaseModel& model, const std::map<std::string
     throw std::invalid_argument("prediction band: case '" + model.spec.name + "' has no skin surface to band");
   PredictionBand band;
   band.touchDistanceMm = options.touchDistanceMm;
-  band.design =
-      parameterDesign({model.spec.poissonRatio, model.spec.blendWidth, !model.scene.contacts.empty()}, options.design);
+  band.design = parameterDesign(designNominal(model), options.design);
   const std::vector<std::string>& names = softTissueLandmarkNames();
   const int solves = static_cast<int>(band.design.runs.size());
   const SurfaceMesh& rest = model.tissue.skin;

@@ -82,11 +82,16 @@ struct PredictionBand {
 // The band of `plan` on `model` (its spec, tissue and skin). Throws std::runtime_error when the
 // nominal solve fails (there is no band without it), std::invalid_argument for a bad design or a
 // case without a skin. A cancel returns at once with cancelled set.
+// The design's nominal of a case: its Poisson's ratio and blend width, whether its scene has
+// contact, the bond distance of its derived bonded nodes (volume cases).
+DesignNominal designNominal(const CaseModel& model);
+
 PredictionBand predictionBand(const CaseModel& model, const std::map<std::string, FragmentMotion>& plan,
                               const BandOptions& options = {}, const BandControl& control = {});
 
 // The scene of one run: the case's scene with the run's parameters (a blend width other than the
-// case's rebuilds the couplings on the same tissue). `lips` receives the bonding report when the
+// case's rebuilds the couplings on the same tissue; another bond distance derives the bonded nodes
+// of the same tetrahedra again). `lips` receives the bonding report when the
 // run bonds the lips.
 Scene bandScene(const CaseModel& model, const ParameterDesign& design, const DesignRun& run, double touchDistanceMm,
                 BondedContactReport* lips = nullptr);

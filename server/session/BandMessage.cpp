@@ -32,10 +32,7 @@ void PlanningSession::band(MessageReader& r, const json& id) {
     throw ProtocolError("no_skin", "case '" + s.caseId + "' has no skin surface: there is no band to show");
   size_t solves = 0;
   try {  // refused now rather than in the job: a range the case's nominal cannot take
-    solves =
-        parameterDesign({s.coarse->spec.poissonRatio, s.coarse->spec.blendWidth, !s.coarse->scene.contacts.empty()},
-                        options.design)
-            .runs.size();
+    solves = parameterDesign(designNominal(*s.coarse), options.design).runs.size();
   } catch (const std::invalid_argument& e) {
     throw ProtocolError("bad_value", std::string("/range_scale: ") + e.what(), "/range_scale");
   }

@@ -59,6 +59,20 @@ TEST(ParameterDesign, WithoutContactNoContactParametersAndAFullFactorialOfTwo) {
   EXPECT_EQ(parameterDesign({0.47, 10.0, false}, {1.0, false}).runs.size(), 5u);
 }
 
+// A volume case whose bonded nodes are derived from the bone surface also varies their distance:
+// five parameters, the half fraction of 16 corners (E = ABCD).
+TEST(ParameterDesign, ADerivedBondAddsTheBondDistance) {
+  const ParameterDesign d = parameterDesign({0.47, 10.0, true, 2.0});
+  ASSERT_EQ(d.parameters.size(), 5u);
+  EXPECT_EQ(d.parameters[4].name, "bond_distance_mm");
+  EXPECT_NEAR(d.parameters[4].low, 1.0, 1e-12);
+  EXPECT_NEAR(d.parameters[4].high, 3.0, 1e-12);
+  EXPECT_EQ(d.runs.size(), 1u + 9u + 16u);
+  for (const DesignRun& r : d.runs)
+    if (r.kind == "corner") EXPECT_EQ(r.levels[4], r.levels[0] * r.levels[1] * r.levels[2] * r.levels[3]);
+  EXPECT_THROW(parameterDesign({0.47, 10.0, true, 0.5}), std::invalid_argument);  // would reach 0 mm
+}
+
 TEST(ParameterDesign, RangeScaleScalesAboutTheCasesNominal) {
   const ParameterDesign d = parameterDesign({0.46, 8.0, true}, {0.5, true});
   EXPECT_NEAR(d.parameters[0].low, 0.45, 1e-12);
