@@ -124,10 +124,14 @@ PredictionBand predictionBand(const CaseModel& model, const std::map<std::string
     out.error = result.error;
     out.iterations = result.iterations;
     out.seconds = secondsSince(ts);
+    const SurfaceMesh skin = out.converged ? model.deformedSkin(result.state.x) : SurfaceMesh{};
+    if (out.converged && !skin.vertices.allFinite()) {  // never in the envelope, and said
+      out.converged = false;
+      out.error = "the converged state gives a skin with non-finite vertices";
+    }
     if (i == 0 && !out.converged)
-      throw std::runtime_error("prediction band: the nominal solve did not converge: " + result.error);
+      throw std::runtime_error("prediction band: the nominal solve did not converge: " + out.error);
     if (out.converged) {
-      const SurfaceMesh skin = model.deformedSkin(result.state.x);
       if (i == 0) {
         nominalSkin = skin;
         band.nominal = result.state;
