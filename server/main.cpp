@@ -168,6 +168,26 @@ int main(int argc, char** argv) {
   import->add_option("--superior", importSuperior, "Superior direction (default 0 0 1)")->expected(3);
   import->add_option("--out", importOut, "Case folder to write (must not exist)")->required();
 
+  orthosim::cli::PlanFromFaceOptions faceOptions;
+  faceOptions.cacheDir = orthosim::defaultCacheDir();
+  std::string faceResolution = "coarse";
+  auto* face = app.add_subcommand(
+      "plan-from-face",
+      "Find the fragment poses that move soft-tissue landmarks where wanted (docs/planning-from-the-face.md)");
+  face->add_option("case", faceOptions.casePath, "Surface-based case (JSON)")->required()->check(CLI::ExistingFile);
+  face->add_option("--targets", faceOptions.targetsPath,
+                   "Targets (JSON): {\"targets\": {landmark: {anterior_mm, ...}}, \"locks\": ...}")
+      ->required()
+      ->check(CLI::ExistingFile);
+  face->add_option("--out", faceOptions.outDir, "Output folder (report.json, plan.json, skin.obj)")->required();
+  face->add_option("--resolution", faceResolution, "coarse (default) or fine")
+      ->check(CLI::IsMember({"coarse", "fine"}));
+  face->add_option("--cache", faceOptions.cacheDir, "Folder of built tissue models (default: ~/.cache/orthosim)");
+  face->add_option("--translation-limit", faceOptions.translationLimitMm, "Largest move of a fragment, mm (default 30)")
+      ->check(CLI::Range(0.1, 100.0));
+  face->add_option("--rotation-limit", faceOptions.rotationLimitDeg, "Largest turn of a fragment, degrees (default 30)")
+      ->check(CLI::Range(0.1, 90.0));
+
   orthosim::cli::ServeOptions serveOptions;
   serveOptions.webDir = ORTHOSIM_WEB_DIR;
   serveOptions.builtinDir = ORTHOSIM_CASES_DIR;
@@ -221,6 +241,10 @@ int main(int argc, char** argv) {
       return orthosim::cli::runSolve(scene, out, solveOptions);
     }
     if (*demo) return orthosim::cli::runDemo(demoOut);
+    if (*face) {
+      faceOptions.resolution = faceResolution == "fine" ? orthosim::Resolution::Fine : orthosim::Resolution::Coarse;
+      return orthosim::cli::runPlanFromFace(faceOptions);
+    }
     if (bench.chosen()) return bench.run();
     if (*phantom) return orthosim::cli::runPhantom(phantomVariant, phantomOut);
     if (*import) {

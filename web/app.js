@@ -23,7 +23,7 @@ const state = {
   ws: null, caseId: null, fragments: [], poses: {}, limits: { translation_mm: 30, rotation_deg: 30 },
   posesDirty: false, sendTimer: null, lastSend: -Infinity, job: null, nextId: 1, viewInFlight: false,
   pendingView: null, lastFrameUrl: null, frameTimes: [], lastSolve: null, openAfterList: null, reconnected: false,
-  frameSize: null,
+  frameSize: null, lastFigures: null,
 };
 const SEND_INTERVAL_MS = 50;  // at most 20 pose updates a second while dragging
 
@@ -81,7 +81,7 @@ const handlers = {
     if (next) { select.value = next; openCase(next); }
   },
   opening: (m) => say(`opening ${m.case}…`),
-  opened: (m) => { onOpened(m); showCaseEditor(m); },
+  opened: (m) => { onOpened(m); showCaseEditor(m); showFaceTargets(m); },
   open_progress: (m) => onOpenProgress(m),
   case_edited: (m) => say(`case ${m.case} changed; rebuilding it`),
   case: () => {},
@@ -89,6 +89,10 @@ const handlers = {
   loaded: (m) => { state.poses = m.poses; renderFragments(); say(`plan "${m.name}" loaded`); },
   preview: (m) => onPreview(m),
   preview_failed: (m) => { showSolveState(null); say(m.message, "error"); },
+  face_fitting: (m) => onFaceFitting(m),
+  face_progress: (m) => onFaceProgress(m),
+  face_plan: (m) => onFacePlan(m),
+  face_plan_failed: (m) => onFacePlanFailed(m),
   drag_ready: () => {},
   drag_unavailable: (m) => say(`the drag view is off until the next preview: ${m.message}`, "error"),
   job_queued: (m) => onJob(m, `queued (${m.position} ahead)`, 0),
@@ -237,6 +241,7 @@ function showSolveState(shown) {
     linear: `linear drag view, refining… (${solved})`, converged: `converged (${solved})`, rest: "rest pose",
     band_low: "prediction band: low envelope", band_high: "prediction band: high envelope",
     band_nominal: "prediction band: nominal prediction",
+    face_fit: "moving the bones to reach the face targets…",
   };
   $("solve-state").textContent = text[shown] || solved;
   $("solve-state").dataset.state = shown || "";
@@ -244,6 +249,7 @@ function showSolveState(shown) {
 
 function onPreview(m) {
   const f = m.figures;
+  state.lastFigures = f;
   state.lastSolve = { seconds: f.solve_s, at: new Date().toLocaleTimeString() };
   let rows = "";
   for (const [name, label] of Object.entries(LANDMARK_NAMES)) {

@@ -6,31 +6,9 @@
 #include <stdexcept>
 
 #include "contact/RigidSurface.hpp"
+#include "eval/SkinPoint.hpp"
 
 namespace orthosim {
-namespace {
-
-struct SkinPoint {
-  int triangle = -1;
-  Eigen::Vector3d weights = Eigen::Vector3d::Zero();  // barycentric, of the triangle's corners
-};
-
-SkinPoint locate(const SurfaceMesh& skin, const Eigen::Vector3d& closest, int t) {
-  const Eigen::Vector3d a = skin.vertices.col(skin.triangles(0, t)), b = skin.vertices.col(skin.triangles(1, t)),
-                        c = skin.vertices.col(skin.triangles(2, t));
-  const Eigen::Vector3d n = (b - a).cross(c - a);
-  const double w0 = (b - closest).cross(c - closest).dot(n) / n.squaredNorm();
-  const double w1 = (c - closest).cross(a - closest).dot(n) / n.squaredNorm();
-  return {t, Eigen::Vector3d(w0, w1, 1 - w0 - w1)};
-}
-
-Eigen::Vector3d place(const SurfaceMesh& s, const SkinPoint& p) {
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k) x += p.weights[k] * s.vertices.col(s.triangles(k, p.triangle));
-  return x;
-}
-
-}  // namespace
 
 const std::vector<std::string>& softTissueLandmarkNames() {
   static const std::vector<std::string> names{"pronasale", "subnasale",     "labrale_superius", "labrale_inferius",
@@ -59,19 +37,18 @@ std::vector<LandmarkError> landmarkErrors(const std::vector<std::string>& names,
       out.push_back(e);
       continue;
     }
-    const SurfacePoint onRest = rest.query(it->second);
-    e.restOffset = std::abs(onRest.distance);
+    const SkinPoint p = skinPointNear(rest, s.rest, it->second);
+    e.restOffset = p.restOffset;
     if (!predictedTracks) {
       e.status = LandmarkStatus::Untracked;
       e.note = "the predicted surface is not the case's skin deformed (other triangles)";
       out.push_back(e);
       continue;
     }
-    const SkinPoint p = locate(s.rest, onRest.closest, onRest.triangle);
     e.status = LandmarkStatus::Measured;
-    e.predicted = place(s.predicted, p);
+    e.predicted = placeSkinPoint(s.predicted, p);
     e.referenceCorresponds = referenceTracks;
-    e.reference = referenceTracks ? place(s.reference, p) : reference->query(e.predicted).closest;
+    e.reference = referenceTracks ? placeSkinPoint(s.reference, p) : reference->query(e.predicted).closest;
     e.note = referenceTracks ? "same skin point on both" : "reference: closest point (error across the surface only)";
     e.error = e.predicted - e.reference;
     e.errorInFrame =

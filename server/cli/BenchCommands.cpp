@@ -35,6 +35,7 @@ BenchCommands::BenchCommands(CLI::App& app) {
   addRender();
   addCohort();
   addBandCohort();
+  addFace();
 }
 
 void BenchCommands::addBlocks() {
@@ -146,6 +147,17 @@ void BenchCommands::addBandCohort() {
   addJson(bandCohort_, o.jsonPath);
 }
 
+void BenchCommands::addFace() {
+  face_ = bench_->add_subcommand("face",
+                                 "Planning from the face on the synthetic cohort: from rest to each plan's predicted "
+                                 "soft-tissue landmarks (iterations, time, misses, bone error)");
+  face_->add_option("--patients", faceOptions_.patients, "The first N patients (default: all)")
+      ->check(CLI::Range(1, 1000));
+  face_->add_option("--data", faceOptions_.dataDir, "Folder for the cohort's cases and tissue cache (kept)");
+  addRepeats(face_, faceOptions_.repeats, "Fits per patient (median time reported)");
+  addJson(face_, faceOptions_.jsonPath);
+}
+
 int BenchCommands::run() const {
   if (blocks_->parsed()) return runBench(blocksOptions_);
   if (phantom_->parsed()) return runCaseBench(phantomOptions_);
@@ -159,6 +171,7 @@ int BenchCommands::run() const {
   if (render_->parsed()) return runRenderBench(renderOptions_);
   if (cohort_->parsed()) return runCohortBench(cohortOptions_);
   if (bandCohort_->parsed()) return runBandCohortBench(bandCohortOptions_);
+  if (face_->parsed()) return runFaceBench(faceOptions_);
   return 1;
 }
 

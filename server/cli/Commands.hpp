@@ -128,6 +128,15 @@ struct BandCohortBenchOptions {
 // over the patients of each parameter's effect on each soft-tissue landmark (the sensitivity
 // table). 0 when every patient's band was made, 1 on bad input, 2 when one could not be.
 int runBandCohortBench(const BandCohortBenchOptions& options);
+struct FaceBenchOptions {
+  int patients = 1000;  // the first N cohort patients
+  int repeats = 3;      // fits per patient (median time reported)
+  std::string dataDir;  // cohort cases and tissue cache (kept); empty: a temporary folder
+  std::string jsonPath;
+};
+// `orthosim bench face`: planning from the face from rest to each cohort plan's predicted
+// landmarks. 0 when every patient is measured, 2 when one could not be.
+int runFaceBench(const FaceBenchOptions& options);
 
 // Writes the built-in phantom head (variant N) as a surface-based case under outDir.
 int runPhantom(int variant, const std::string& outDir);
@@ -149,6 +158,17 @@ struct CompareOptions {
 // Prints the surface error (whole skin and face region) and the soft-tissue landmark errors;
 // 0 when measured, 1 on bad input (missing or unreadable file, empty mesh, bad case).
 int runCompare(const CompareOptions& options);
+
+struct PlanFromFaceOptions {
+  std::string casePath, targetsPath, outDir;
+  Resolution resolution = Resolution::Coarse;
+  std::string cacheDir;  // built tissue cache; empty: none
+  double translationLimitMm = 30, rotationLimitDeg = 30;
+};
+// Writes report.json (poses, residuals, iterations), plan.json (the case file's plan format) and
+// skin.obj (the predicted face). 0 when every target is reached, 1 on bad input, 2 when a target
+// cannot be reached (the best poses are written) or the solve fails.
+int runPlanFromFace(const PlanFromFaceOptions& options);
 
 struct ServeOptions {
   std::string host = "127.0.0.1";

@@ -1,37 +1,11 @@
 #include "session/AnatomicalPose.hpp"
 
-#include "math/Angles.hpp"
+#include "planning/FaceRequestJson.hpp"
 
-#include <Eigen/Geometry>
 #include <cmath>
 #include <sstream>
 
 namespace orthosim::server {
-namespace {
-
-double radians(double deg) { return deg * kPi / 180.0; }
-
-}  // namespace
-
-bool AnatomicalPose::isRest() const { return *this == AnatomicalPose{}; }
-
-bool AnatomicalPose::operator==(const AnatomicalPose& o) const {
-  return anteriorMm == o.anteriorMm && superiorMm == o.superiorMm && rightMm == o.rightMm && pitchDeg == o.pitchDeg &&
-         rollDeg == o.rollDeg && yawDeg == o.yawDeg;
-}
-
-FragmentMotion motionFromPose(const AnatomicalPose& p, const AnatomicalFrame& f, const Eigen::Vector3d& pivot) {
-  // Right-hand rule: about +right the anterior end rises; about -anterior (posterior) the right
-  // side rises; about -superior the front turns to the right.
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(radians(p.yawDeg), -f.superior).toRotationMatrix() *
-                            Eigen::AngleAxisd(radians(p.pitchDeg), f.right).toRotationMatrix() *
-                            Eigen::AngleAxisd(radians(p.rollDeg), -f.anterior).toRotationMatrix();
-  FragmentMotion m;
-  m.translation = p.anteriorMm * f.anterior + p.superiorMm * f.superior + p.rightMm * f.right;
-  m.rotation = vectorFromRotation(R);
-  m.center = pivot;
-  return m;
-}
 
 std::vector<std::string> unusualPoseWarnings(const std::string& fragment, const AnatomicalPose& p) {
   constexpr double kUsualMm = 10, kUsualDeg = 10;
@@ -52,10 +26,7 @@ std::vector<std::string> unusualPoseWarnings(const std::string& fragment, const 
   return out;
 }
 
-nlohmann::json poseToJson(const AnatomicalPose& p) {
-  return {{"anterior_mm", p.anteriorMm}, {"superior_mm", p.superiorMm}, {"right_mm", p.rightMm},
-          {"pitch_deg", p.pitchDeg},     {"roll_deg", p.rollDeg},       {"yaw_deg", p.yawDeg}};
-}
+nlohmann::json poseToJson(const AnatomicalPose& p) { return anatomicalPoseJson(p); }
 
 AnatomicalPose readPose(MessageReader r, const PoseLimits& limits) {
   const double t = limits.translationMm, a = limits.rotationDeg;

@@ -9,11 +9,14 @@
 
 #include "eval/LandmarkError.hpp"
 #include "eval/SkinFigures.hpp"
+#include "planning/LandmarkProbe.hpp"
 #include "render/SurfaceDifference.hpp"
 #include "scene/LandmarkFrame.hpp"
 #include "scene/Osteotomy.hpp"
+#include "scene/PlanningFragments.hpp"
 #include "session/DragResponse.hpp"
 #include "session/FineJob.hpp"
+#include "session/OpenCase.hpp"
 #include "session/SavedPlan.hpp"
 #include "session/SkinExport.hpp"
 #include "session/SolveFiguresJson.hpp"
@@ -27,58 +30,13 @@ using Poses = std::map<std::string, AnatomicalPose>;
 
 namespace {
 
-struct FragmentInfo {
-  std::string name, bone;
-  Eigen::Vector3d pivot;
-};
-
 double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-// Hands the freed heap back to the system once a session's case (its Model, factorisations and
-// states: hundreds of MB) is gone; glibc keeps it otherwise (2.4 GB held after 16 sessions).
-struct ReturnFreedMemory {
-  ~ReturnFreedMemory() { ::malloc_trim(0); }
-};
 }  // namespace
-
-struct PlanningSession::OpenCase {
-  ReturnFreedMemory trimLast;  // first member: destroyed after the others
-  std::string id;
-  std::shared_ptr<const CaseModel> coarse;
-  std::vector<FragmentInfo> fragments;  // the movable ones, in scene order
-  SkinFigureProbe probe;
-  std::unique_ptr<Model> model;  // only the session's serial work touches it and lastGood
-  SimState lastGood;
-  // Guarded by the session's mutex: the newest converged preview, for exports and comparisons.
-  std::shared_ptr<const Eigen::Matrix3Xd> previewX;
-  Poses previewPoses;
-  std::shared_ptr<const DragResponse> drag;  // its linear response, for frames during a drag
-  std::vector<int> lips;                     // display-skin vertices where the drag error is reported
-
-  std::vector<DragFragment> dragFragments() const {
-    std::vector<DragFragment> out;
-    for (const FragmentInfo& f : fragments) out.push_back({f.name, f.pivot});
-    return out;
-  }
-
-  const FragmentInfo* fragment(const std::string& name) const {
-    for (const FragmentInfo& f : fragments)
-      if (f.name == name) return &f;
-    return nullptr;
-  }
-  std::map<std::string, FragmentMotion> plan(const Poses& poses) const {
-    std::map<std::string, FragmentMotion> plan;
-    for (const FragmentInfo& f : fragments) {
-      auto it = poses.find(f.name);
-      plan[f.name] = motionFromPose(it == poses.end() ? AnatomicalPose{} : it->second, coarse->spec.frame, f.pivot);
-    }
-    return plan;
-  }
-};
 
 struct PlanningSession::FineResult {
   long long job = 0;
@@ -87,26 +45,6 @@ struct PlanningSession::FineResult {
   Eigen::Matrix3Xd x;
   Poses poses;
 };
-
-namespace {
-
-// The fragments a plan can move (the case scene's prescribed fragments), each turning about the
-// centroid of its bonded tissue nodes at rest.
-std::vector<FragmentInfo> movableFragments(const CaseModel& m) {
-  std::vector<FragmentInfo> out;
-  for (const FragmentSpec& f : m.scene.fragments) {
-    const auto bone =
-        std::find_if(m.spec.bones.begin(), m.spec.bones.end(), [&](const CaseBone& b) { return b.name == f.name; });
-    if (f.free || (bone != m.spec.bones.end() && bone->fixed)) continue;  // what is left of the skull stays
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (int n : f.nodes) c += m.scene.mesh.rest.col(n);
-    if (!f.nodes.empty()) c /= static_cast<double>(f.nodes.size());
-    out.push_back({f.name, m.spec.boneOf(f.name), c});
-  }
-  return out;
-}
-
-}  // namespace
 
 PlanningSession::PlanningSession(PlanningService& service, Send send)
     : service_(service),
@@ -211,6 +149,7 @@ void PlanningSession::dispatch(const std::string& type, MessageReader& r, const 
                                                           {"view", &PlanningSession::view},
                                                           {"pick", &PlanningSession::pick},
                                                           {"edit_case", &PlanningSession::editCase},
+                                                          {"plan_from_face", &PlanningSession::planFromFace},
                                                           {"band", &PlanningSession::band},
                                                           {"band_view", &PlanningSession::bandView},
                                                           {"export_band", &PlanningSession::exportBand}};
@@ -262,9 +201,10 @@ void PlanningSession::startOpening(const std::string& caseId, const json& id) {
           c->coarse = self->service_.cases().model(caseId, Resolution::Coarse);
           if (cancel) return;
           progress("model", 0.6);
-          c->fragments = movableFragments(*c->coarse);
+          c->fragments = planningFragments(*c->coarse);
           c->probe = SkinFigureProbe(*c->coarse);
           c->lips = lipVertices(*c->coarse);
+          c->faceLandmarks = skinLandmarkNames(*c->coarse);
           c->model = std::make_unique<Model>(*self->service_.cases().coarsePrototype(caseId), Model::ShareImmutable{});
           c->lastGood = c->model->restState();
         } catch (const std::exception& e) {
@@ -296,7 +236,7 @@ void PlanningSession::startOpening(const std::string& caseId, const json& id) {
 json PlanningSession::caseJson(const OpenCase& c) const {
   const CaseModel& m = *c.coarse;
   json fragments = json::array();
-  for (const FragmentInfo& f : c.fragments) {
+  for (const PlanningFragment& f : c.fragments) {
     auto it = poses_.find(f.name);
     fragments.push_back({{"name", f.name},
                          {"bone", f.bone},
@@ -337,6 +277,7 @@ json PlanningSession::caseJson(const OpenCase& c) const {
           {"landmarks", std::move(landmarks)},
           {"landmarks_mm", std::move(landmarkPositions)},
           {"landmarks_needed", std::move(needed)},
+          {"face_landmarks", c.faceLandmarks},
           {"frame_from_landmarks", std::move(landmarkFrame)},
           {"editable", entry && entry->source == "import"},
           {"coarse",
@@ -376,7 +317,7 @@ Poses PlanningSession::readPoses(MessageReader r, const OpenCase& c) const {
     const std::string& name = item.key();
     if (!c.fragment(name)) {
       std::string known;
-      for (const FragmentInfo& f : c.fragments) known += (known.empty() ? "" : ", ") + f.name;
+      for (const PlanningFragment& f : c.fragments) known += (known.empty() ? "" : ", ") + f.name;
       throw ProtocolError(
           "unknown_fragment",
           r.pointer(name) + ": no movable fragment '" + name + "' in case '" + c.id + "'; movable fragments: " + known,
@@ -390,7 +331,7 @@ Poses PlanningSession::readPoses(MessageReader r, const OpenCase& c) const {
 json PlanningSession::posesJson() const {
   json j = json::object();
   if (!open_) return j;
-  for (const FragmentInfo& f : open_->fragments) {
+  for (const PlanningFragment& f : open_->fragments) {
     auto it = poses_.find(f.name);
     j[f.name] = poseToJson(it == poses_.end() ? AnatomicalPose{} : it->second);
   }
@@ -547,7 +488,7 @@ void PlanningSession::runPreview(const std::shared_ptr<OpenCase>& c, long long s
     requestFrame();
   }
   json posesOut = json::object();
-  for (const FragmentInfo& f : c->fragments) {
+  for (const PlanningFragment& f : c->fragments) {
     auto it = poses.find(f.name);
     posesOut[f.name] = poseToJson(it == poses.end() ? AnatomicalPose{} : it->second);
   }

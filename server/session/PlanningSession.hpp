@@ -13,6 +13,7 @@
 #include <string>
 
 #include "eval/PredictionBand.hpp"
+#include "planning/FaceRequestJson.hpp"
 #include "session/AnatomicalPose.hpp"
 #include "session/FineJob.hpp"
 #include "session/MessageReader.hpp"
@@ -81,6 +82,12 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   void exportSkin(MessageReader& r, const nlohmann::json& id);
   void view(MessageReader& r, const nlohmann::json& id);
   void pick(MessageReader& r, const nlohmann::json& id);
+  // Poses from soft-tissue landmark targets (session/FaceTargetMessage.cpp).
+  void planFromFace(MessageReader& r, const nlohmann::json& id);
+  void checkFaceRequest(const FaceRequest& face, const OpenCase& c) const;
+  void runFaceFit(const std::shared_ptr<OpenCase>& c, const FaceRequest& face,
+                  const std::map<std::string, AnatomicalPose>& start, const nlohmann::json& id,
+                  const std::atomic<bool>& cancel);
   void requestFrame();
   void showLinear(const nlohmann::json& id);
   void scheduleDragResponse(const std::shared_ptr<OpenCase>& c, long long seq, const SimState& state);

@@ -16,6 +16,7 @@ allowed() {
     contact) echo "mesh scene math" ;;
     solver) echo "mesh physics scene contact math" ;;
     eval) echo "mesh physics scene contact solver phantom math" ;;
+    planning) echo "mesh physics scene contact solver eval math" ;;
     render) echo "mesh scene eval image math solver/SimState.hpp" ;;
     *) echo "?" ;;
   esac

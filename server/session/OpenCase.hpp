@@ -1,0 +1,56 @@
+#pragma once
+// What a planning session holds of its open case (session/PlanningSession.hpp): the coarse model
+// and its solver state, the movable fragments, the newest preview and its drag response. Shared by
+// the session's files (PlanningSession.cpp and the message files beside it).
+#include <malloc.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "eval/SkinFigures.hpp"
+#include "scene/PlanningFragments.hpp"
+#include "session/DragResponse.hpp"
+#include "session/PlanningSession.hpp"
+#include "solver/Model.hpp"
+
+namespace orthosim::server {
+
+// Hands the freed heap back to the system once a session's case (its Model, factorisations and
+// states: hundreds of MB) is gone; glibc keeps it otherwise (2.4 GB held after 16 sessions).
+struct ReturnFreedMemory {
+  ~ReturnFreedMemory() { ::malloc_trim(0); }
+};
+
+struct PlanningSession::OpenCase {
+  ReturnFreedMemory trimLast;  // first member: destroyed after the others
+  std::string id;
+  std::shared_ptr<const CaseModel> coarse;
+  std::vector<PlanningFragment> fragments;  // the movable ones, in scene order
+  SkinFigureProbe probe;
+  std::unique_ptr<Model> model;  // only the session's serial work touches it and lastGood
+  SimState lastGood;
+  // Guarded by the session's mutex: the newest converged preview, for exports and comparisons.
+  std::shared_ptr<const Eigen::Matrix3Xd> previewX;
+  std::map<std::string, AnatomicalPose> previewPoses;
+  std::shared_ptr<const DragResponse> drag;  // its linear response, for frames during a drag
+  std::vector<int> lips;                     // display-skin vertices where the drag error is reported
+  std::vector<std::string> faceLandmarks;    // the landmarks on the skin: what plan_from_face can target
+
+  std::vector<DragFragment> dragFragments() const {
+    std::vector<DragFragment> out;
+    for (const PlanningFragment& f : fragments) out.push_back({f.name, f.pivot});
+    return out;
+  }
+
+  const PlanningFragment* fragment(const std::string& name) const {
+    for (const PlanningFragment& f : fragments)
+      if (f.name == name) return &f;
+    return nullptr;
+  }
+  std::map<std::string, FragmentMotion> plan(const std::map<std::string, AnatomicalPose>& poses) const {
+    return planFromPoses(fragments, poses, coarse->spec.frame);
+  }
+};
+
+}  // namespace orthosim::server
