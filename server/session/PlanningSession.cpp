@@ -149,7 +149,10 @@ void PlanningSession::dispatch(const std::string& type, MessageReader& r, const 
                                                           {"view", &PlanningSession::view},
                                                           {"pick", &PlanningSession::pick},
                                                           {"edit_case", &PlanningSession::editCase},
-                                                          {"plan_from_face", &PlanningSession::planFromFace}};
+                                                          {"plan_from_face", &PlanningSession::planFromFace},
+                                                          {"band", &PlanningSession::band},
+                                                          {"band_view", &PlanningSession::bandView},
+                                                          {"export_band", &PlanningSession::exportBand}};
   auto it = handlers.find(type);
   if (it == handlers.end()) {
     std::string known;
@@ -557,6 +560,12 @@ void PlanningSession::confirm(MessageReader& r, const json& id) {
          {"case", c->id},
          {"position", service_.fineJobs().position(*job).value_or(0)}},
         id);
+}
+
+PlanningSession::PlanSnapshot PlanningSession::planSnapshot() const {
+  const std::shared_ptr<OpenCase> c = requireOpen();
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return {c->id, c->coarse, c->plan(poses_), posesJson()};
 }
 
 void PlanningSession::runFine(long long job, const std::shared_ptr<OpenCase>& c, Poses poses,
