@@ -79,6 +79,26 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.05, 1.0));
   render->add_flag("--before-after", renderOptions.beforeAfter, "Rest (left) and predicted (right) side by side");
 
+  std::string bandCase, bandResolution = "coarse";
+  orthosim::cli::BandCommandOptions bandOptions;
+  bandOptions.cacheDir = orthosim::defaultCacheDir();
+  bool bandNoCache = false;
+  auto* band =
+      app.add_subcommand("band",
+                         "Prediction band of a case's plan over the model parameters that change the "
+                         "answer: envelope surfaces, landmark ranges and sensitivities (docs/prediction-band.md)");
+  band->add_option("case", bandCase, "Surface-based case file (JSON)")->required()->check(CLI::ExistingFile);
+  band->add_option("--out", bandOptions.outDir, "Output folder")->required();
+  band->add_option("--plan", bandOptions.planPath,
+                   "Plan file {fragment: {translation_mm, rotation_deg, center_mm}} instead of the case's plan")
+      ->check(CLI::ExistingFile);
+  band->add_option("--resolution", bandResolution, "coarse (preview) or fine (confirm)")
+      ->check(CLI::IsMember({"coarse", "fine"}));
+  band->add_option("--range-scale", bandOptions.rangeScale, "Scale of every parameter range about the nominal (0, 2]");
+  band->add_flag("--no-corners", bandOptions.noCorners, "Only the one-at-a-time runs (no factorial corners)");
+  band->add_option("--cache", bandOptions.cacheDir, "Folder of built tissue models (default: ~/.cache/orthosim)");
+  band->add_flag("--no-cache", bandNoCache, "Build the tissue model even if it is cached, and do not store it");
+
   orthosim::cli::CompareOptions compareOptions;
   auto* compare = app.add_subcommand("compare",
                                      "Error of a predicted skin against a reference surface (signed distance, "
@@ -266,6 +286,11 @@ int main(int argc, char** argv) {
       return orthosim::cli::runRender(renderCase, renderOptions);
     }
     if (*compare) return orthosim::cli::runCompare(compareOptions);
+    if (*band) {
+      bandOptions.resolution = bandResolution == "fine" ? orthosim::Resolution::Fine : orthosim::Resolution::Coarse;
+      if (bandNoCache) bandOptions.cacheDir.clear();
+      return orthosim::cli::runBand(bandCase, bandOptions);
+    }
   } catch (const std::exception& e) {
     std::cerr << "orthosim: " << e.what() << "\n";
     return 1;

@@ -239,6 +239,8 @@ function showSolveState(shown) {
   const solved = last ? `last solve ${last.seconds.toFixed(2)} s at ${last.at}` : "no solve yet";
   const text = {
     linear: `linear drag view, refining… (${solved})`, converged: `converged (${solved})`, rest: "rest pose",
+    band_low: "prediction band: low envelope", band_high: "prediction band: high envelope",
+    band_nominal: "prediction band: nominal prediction",
     face_fit: "moving the bones to reach the face targets…",
   };
   $("solve-state").textContent = text[shown] || solved;

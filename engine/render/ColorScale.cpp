@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "render/RenderError.hpp"
+#include "render/RenderOptions.hpp"
 
 namespace orthosim::render {
 namespace {
@@ -65,6 +66,29 @@ ColorScale differenceScale(double rangeMm) {
              rgb(253, 219, 199), rgb(239, 138, 98),  rgb(178, 24, 43)};
   s.ticks = roundTicks(s.min, s.max);
   return s;
+}
+
+ColorScale bandScale(double maxMm) {
+  checkRange(maxMm, "band width scale maximum");
+  ColorScale s;
+  s.title = "band width (mm)";
+  s.min = 0;
+  s.max = maxMm;
+  s.stops = {rgb(247, 252, 240), rgb(186, 228, 188), rgb(123, 204, 196),
+             rgb(43, 140, 190),  rgb(8, 64, 129),    rgb(63, 0, 125)};
+  s.ticks = roundTicks(s.min, s.max);
+  return s;
+}
+
+ColorScale scaleOf(const RenderOptions& o) {
+  switch (o.colorMap) {
+    case ColorMap::Displacement:
+      return displacementScale(o.displacementMaxMm);
+    case ColorMap::Band:
+      return bandScale(o.bandMaxMm);
+    default:
+      return differenceScale(o.differenceRangeMm);
+  }
 }
 
 }  // namespace orthosim::render

@@ -12,9 +12,10 @@ enum class ColorMap {
   None,          // the skin's texture (or a plain skin tone without one)
   Displacement,  // |current - rest| per vertex, 0..displacementMaxMm
   Difference,    // values given per vertex (Renderer::setSkinValues), -differenceRangeMm..+differenceRangeMm
+  Band,          // a prediction band's width per vertex (Renderer::setSkinValues), 0..bandMaxMm
 };
 
-// "none", "displacement", "difference".
+// "none", "displacement", "difference", "band".
 const std::vector<std::string>& colorMapNames();
 ColorMap parseColorMap(const std::string& name);  // throws RenderError naming the valid names
 
@@ -31,6 +32,7 @@ struct RenderOptions {
   ColorMap colorMap = ColorMap::None;
   double displacementMaxMm = 10.0;
   double differenceRangeMm = 3.0;
+  double bandMaxMm = 2.0;
   bool legend = true;  // with a colour map: its scale, drawn into the image
   // Before/after: the rest skin (and bones at rest) in the left half, the current one in the right
   // half, both through the same camera, labelled; the colour map applies to the "after" half.

@@ -53,13 +53,14 @@ struct GpuState {
         framebuffer(width, height, samples),
         surface("surface", shaders::kSurfaceVertex, shaders::kSurfaceFragment),
         displacementRamp(GlTexture::ramp(displacementScale().sample())),
-        differenceRamp(GlTexture::ramp(differenceScale().sample())) {}
+        differenceRamp(GlTexture::ramp(differenceScale().sample())),
+        bandRamp(GlTexture::ramp(bandScale().sample())) {}
 
   int samples;
   Framebuffer framebuffer;
   Shader surface;
   Overlay overlay;
-  GlTexture displacementRamp, differenceRamp;
+  GlTexture displacementRamp, differenceRamp, bandRamp;
   std::optional<GpuMesh> skin;
   GlTexture skinTexture;
   bool skinValues = false;
@@ -110,19 +111,21 @@ void Renderer::Impl::setSkinUniforms(const RenderOptions& o, bool atRest) {
   s.set("uAtRest", atRest ? 1 : 0);
   s.set("uSpecular", map == ColorMap::None ? 0.12f : 0.05f);
   s.set("uColor", withAlpha(kSkinTone, o.skinOpacity));
-  s.set("uValueSource", static_cast<int>(map == ColorMap::Displacement ? kDisplacement
-                                         : map == ColorMap::Difference ? kScalar
-                                                                       : kNoValue));
+  s.set("uValueSource", static_cast<int>(map == ColorMap::Displacement                          ? kDisplacement
+                                         : map == ColorMap::Difference || map == ColorMap::Band ? kScalar
+                                                                                                : kNoValue));
   if (map == ColorMap::None) {
     s.set("uColorSource", static_cast<int>(gpu->skinTexture.valid() ? kTexture : kFlat));
     return;
   }
   s.set("uColorSource", static_cast<int>(kRamp));
-  const ColorScale scale =
-      map == ColorMap::Displacement ? displacementScale(o.displacementMaxMm) : differenceScale(o.differenceRangeMm);
+  const ColorScale scale = scaleOf(o);
   s.set("uRange", Eigen::Vector2f(float(scale.min), float(scale.max)));
   s.set("uNoValue", withAlpha(kNoValueColor, 1.0f));
-  (map == ColorMap::Displacement ? gpu->displacementRamp : gpu->differenceRamp).bind(1);
+  (map == ColorMap::Displacement ? gpu->displacementRamp
+   : map == ColorMap::Band       ? gpu->bandRamp
+                                 : gpu->differenceRamp)
+      .bind(1);
 }
 
 // A translucent skin blends only its nearest layer over the bones: a depth-only pass first, then
@@ -164,9 +167,7 @@ void Renderer::Impl::drawLabels(const RenderOptions& o, const FrameLayout& layou
   Overlay& overlay = gpu->overlay;
   overlay.clear();
   if (o.colorMap != ColorMap::None && o.legend) {
-    const ColorScale scale = o.colorMap == ColorMap::Displacement ? displacementScale(o.displacementMaxMm)
-                                                                  : differenceScale(o.differenceRangeMm);
-    addLegend(overlay, scale, layout.legend, s);
+    addLegend(overlay, scaleOf(o), layout.legend, s);
   }
   if (o.beforeAfter) {
     const PixelRect& after = layout.views.back();
@@ -259,8 +260,9 @@ double Renderer::viewAspect(const RenderOptions& options) const {
 
 void Renderer::render(const Camera& camera, const RenderOptions& o, RgbImage& out) {
   if (!(o.skinOpacity > 0.0f && o.skinOpacity <= 1.0f)) throw RenderError("skin opacity must lie in (0, 1]");
-  if (o.colorMap == ColorMap::Difference && !impl_->gpu->skinValues)
-    throw RenderError("difference colour map: no values set for the skin (setSkinValues)");
+  if ((o.colorMap == ColorMap::Difference || o.colorMap == ColorMap::Band) && !impl_->gpu->skinValues)
+    throw RenderError(std::string(o.colorMap == ColorMap::Band ? "band" : "difference") +
+                      " colour map: no values set for the skin (setSkinValues)");
   GlContext::Binding bound(impl_->context);
   GpuState& g = *impl_->gpu;
   const FrameLayout layout = frameLayout(g.framebuffer.width(), g.framebuffer.height(), o);

@@ -34,6 +34,7 @@ BenchCommands::BenchCommands(CLI::App& app) {
   addSessions();
   addRender();
   addCohort();
+  addBandCohort();
   addFace();
 }
 
@@ -133,6 +134,19 @@ void BenchCommands::addCohort() {
   addJson(cohort_, o.jsonPath);
 }
 
+void BenchCommands::addBandCohort() {
+  BandCohortBenchOptions& o = bandCohortOptions_;
+  bandCohort_ = bench_->add_subcommand("band-cohort",
+                                       "The prediction band's sensitivity table on the synthetic cohort: per "
+                                       "parameter and soft-tissue landmark, the median one-at-a-time effect (coarse)");
+  const int all = static_cast<int>(cohortPatients().size());
+  bandCohort_->add_option("--patients", o.patients, "The first N patients (default: all)")->check(CLI::Range(1, all));
+  bandCohort_->add_option("--patient", o.patientIds, "Only these patients (e.g. --patient M4 --patient M9)");
+  bandCohort_->add_flag("--corners", o.corners, "Also solve the factorial corners (the table needs only the others)");
+  bandCohort_->add_option("--data", o.dataDir, "Folder for the cohort's cases and tissue cache (kept)");
+  addJson(bandCohort_, o.jsonPath);
+}
+
 void BenchCommands::addFace() {
   face_ = bench_->add_subcommand("face",
                                  "Planning from the face on the synthetic cohort: from rest to each plan's predicted "
@@ -156,6 +170,7 @@ int BenchCommands::run() const {
   }
   if (render_->parsed()) return runRenderBench(renderOptions_);
   if (cohort_->parsed()) return runCohortBench(cohortOptions_);
+  if (bandCohort_->parsed()) return runBandCohortBench(bandCohortOptions_);
   if (face_->parsed()) return runFaceBench(faceOptions_);
   return 1;
 }

@@ -27,17 +27,19 @@ class BenchCommands {
   void addSessions();
   void addRender();
   void addCohort();
+  void addBandCohort();
   void addFace();
 
   CLI::App* bench_ = nullptr;
   CLI::App *blocks_ = nullptr, *phantom_ = nullptr, *case_ = nullptr, *latency_ = nullptr, *render_ = nullptr,
-           *cohort_ = nullptr, *sessions_ = nullptr, *face_ = nullptr;
+           *cohort_ = nullptr, *sessions_ = nullptr, *bandCohort_ = nullptr, *face_ = nullptr;
   BenchOptions blocksOptions_;
   CaseBenchOptions phantomOptions_, caseOptions_;
   LatencyBenchOptions latencyOptions_;
   SessionsBenchOptions sessionsOptions_;
   RenderBenchOptions renderOptions_;
   CohortBenchOptions cohortOptions_;
+  BandCohortBenchOptions bandCohortOptions_;
   FaceBenchOptions faceOptions_;
 };
 

@@ -106,6 +106,30 @@ struct CohortBenchOptions {
 // a patient could not be (its row says why; the others are still measured and written).
 int runCohortBench(const CohortBenchOptions& options);
 
+struct BandCommandOptions {
+  std::string planPath;  // plan file replacing the case's plan; empty: the case's plan
+  Resolution resolution = Resolution::Coarse;
+  std::string cacheDir;  // built tissue cache; empty: none
+  std::string outDir;
+  double rangeScale = 1.0;  // of the parameter ranges (eval/ParameterDesign)
+  bool noCorners = false;   // one-at-a-time runs only
+};
+// The prediction band of a case's plan: envelope_low.ply, envelope_high.ply, nominal.ply and
+// band.json in outDir. 0 when every run converged, 1 on bad input, 2 when the nominal failed (no
+// band) or a variant did not converge (named; the band is written without it).
+int runBand(const std::string& casePath, const BandCommandOptions& options);
+
+struct BandCohortBenchOptions {
+  int patients = -1;                    // the first N of the cohort; -1: all
+  std::vector<std::string> patientIds;  // instead: these patients
+  bool corners = false;                 // also the corners (only the one-at-a-time runs give the table)
+  std::string jsonPath;
+  std::string dataDir;  // cohort cases and tissue cache (kept); empty: a temporary folder
+};
+// `orthosim bench band-cohort`: each cohort patient's band at coarse resolution, and the median
+// over the patients of each parameter's effect on each soft-tissue landmark (the sensitivity
+// table). 0 when every patient's band was made, 1 on bad input, 2 when one could not be.
+int runBandCohortBench(const BandCohortBenchOptions& options);
 struct FaceBenchOptions {
   int patients = 1000;  // the first N cohort patients
   int repeats = 3;      // fits per patient (median time reported)

@@ -34,6 +34,10 @@ SolvedCase solveCase(const CaseSpec& spec, Resolution resolution, const std::str
 render::RenderOptions renderOptions(const RenderCommandOptions& o) {
   render::RenderOptions r;
   r.colorMap = render::parseColorMap(o.colorMap);
+  if (r.colorMap == render::ColorMap::Band)  // a band is many solves: `orthosim band` writes its surfaces
+    throw render::RenderError(
+        "--colormap band: the prediction band's colour map is drawn by the planning server; "
+        "`orthosim band` writes the band's envelope surfaces and figures");
   r.showBones = o.bones || o.skinOpacity < 1.0;
   r.skinOpacity = static_cast<float>(o.skinOpacity);
   r.beforeAfter = o.beforeAfter;

@@ -3,9 +3,6 @@
 namespace orthosim::server {
 using nlohmann::json;
 
-InProcessFineJobs::InProcessFineJobs(CaseLibrary& cases, int workers, int capacity)
-    : cases_(cases), queue_(workers, capacity, /*niceness=*/10) {}
-
 std::optional<SubmittedJob> InProcessFineJobs::submit(FineJobRequest request, FineJobCallbacks callbacks) {
   auto shared = std::make_shared<FineJobCallbacks>(std::move(callbacks));
   const std::optional<long long> job = queue_.submit(

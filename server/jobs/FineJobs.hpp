@@ -53,10 +53,10 @@ class FineJobs {
   virtual void shutdown() = 0;
 };
 
-// The bounded pool of this process (session/JobQueue), fine jobs 10 nice levels below the server.
+// The bounded pool of this process (session/JobQueue, the service's, which band jobs share).
 class InProcessFineJobs : public FineJobs {
  public:
-  InProcessFineJobs(CaseLibrary& cases, int workers, int capacity);
+  InProcessFineJobs(CaseLibrary& cases, JobQueue& queue) : cases_(cases), queue_(queue) {}
   std::optional<SubmittedJob> submit(FineJobRequest request, FineJobCallbacks callbacks) override;
   bool cancel(const std::string& owner, long long id) override { return queue_.cancel(owner, id); }
   void cancelOwner(const std::string& owner) override { queue_.cancelOwner(owner); }
@@ -66,7 +66,7 @@ class InProcessFineJobs : public FineJobs {
 
  private:
   CaseLibrary& cases_;
-  JobQueue queue_;
+  JobQueue& queue_;
 };
 
 }  // namespace orthosim::server

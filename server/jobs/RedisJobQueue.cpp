@@ -49,7 +49,7 @@ std::optional<SubmittedJob> RedisFineJobs::submit(FineJobRequest request, FineJo
     if (waiting >= capacity_) return std::nullopt;
     job.id = nextId_++;
   }
-  job.name = serverId_ + "-" + std::to_string(job.id);
+  job.name = serverId_ + "-" + std::to_string(job.id - 1000000000);
   job.owner = request.owner;
   job.caseId = request.caseId;
   job.callbacks = std::make_shared<FineJobCallbacks>(std::move(callbacks));
@@ -238,7 +238,7 @@ void RedisFineJobs::handleReply(const std::string& text) {
   if (name.rfind(prefix, 0) != 0) return;
   long long id = 0;
   try {
-    id = std::stoll(name.substr(prefix.size()));
+    id = std::stoll(name.substr(prefix.size())) + 1000000000;
   } catch (const std::exception&) {
     return;
   }

@@ -67,7 +67,8 @@ class RedisFineJobs : public FineJobs {
 
   mutable std::mutex mutex_;
   std::map<long long, Job> jobs_;
-  long long nextId_ = 1;
+  // Numbers never shared with the server's own queue (band jobs), so that cancel finds the one job.
+  long long nextId_ = 1000000001;
 
   std::atomic<bool> stopping_{false};
   std::thread relay_;

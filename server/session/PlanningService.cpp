@@ -13,6 +13,7 @@ PlanningService::PlanningService(PlanningOptions options)
     : options_(std::move(options)),
       lock_(options_.dataDir),
       cases_(options_.cases, options_.dataDir),
+      localJobs_(options_.fineWorkers, options_.fineQueue, /*niceness=*/10),
       plans_(options_.dataDir / "plans"),
       patients_(options_.dataDir, cases_),
       previewPool_(static_cast<std::size_t>(std::max(1, options_.previewThreads))) {
@@ -29,13 +30,14 @@ PlanningService::PlanningService(PlanningOptions options)
   }
   for (const std::string& s : skipped) std::cerr << "orthosim serve: skipped imported patient " << s << "\n";
   if (options_.redisUrl.empty()) {
-    fineJobs_ = std::make_unique<InProcessFineJobs>(cases_, options_.fineWorkers, options_.fineQueue);
+    fineJobs_ = std::make_unique<InProcessFineJobs>(cases_, localJobs_);
   } else {
     auto redis =
         std::make_unique<RedisFineJobs>(parseRedisUrl(options_.redisUrl), cases_, options_.dataDir, options_.fineQueue);
     std::cerr << "orthosim serve: fine jobs go to the workers through Redis at " << options_.redisUrl
               << " (reply stream " << replyStreamName(redis->serverId()) << ")\n";
     fineJobs_ = std::move(redis);
+    redisJobs_ = true;
   }
 }
 
@@ -54,7 +56,9 @@ nlohmann::json PlanningService::health(const std::string& version) const {
   return {{"status", "ok"},
           {"version", version},
           {"sessions", sessions_.load()},
-          {"jobs", {{"running", fineJobs_->running()}, {"queued", fineJobs_->queued()}}}};
+          {"jobs",
+           {{"running", localJobs_.running() + (redisJobs_ ? fineJobs_->running() : 0)},
+            {"queued", localJobs_.queued() + (redisJobs_ ? fineJobs_->queued() : 0)}}}};
 }
 
 void PlanningService::warmUp(const std::string& caseId) {
@@ -70,6 +74,7 @@ void PlanningService::warmUp(const std::string& caseId) {
 
 void PlanningService::shutdown() {
   if (fineJobs_) fineJobs_->shutdown();
+  localJobs_.shutdown();
   previewPool_.stop();  // queued previews never start; running ones see their session's cancel
   previewPool_.join();
   renderPool_.stop();

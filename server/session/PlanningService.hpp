@@ -17,6 +17,7 @@
 #include "session/AnatomicalPose.hpp"
 #include "session/DataFolderLock.hpp"
 #include "session/ExportStore.hpp"
+#include "session/JobQueue.hpp"
 #include "session/PlanStore.hpp"
 
 namespace orthosim::server {
@@ -49,7 +50,10 @@ class PlanningService {
   boost::asio::thread_pool& previewPool() { return previewPool_; }
   // One thread draws every session's frames: each session's renderer is used by one thread.
   boost::asio::thread_pool& renderPool() { return renderPool_; }
+  // Fine jobs: on localJobs() or, with redisUrl, on the workers.
   FineJobs& fineJobs() { return *fineJobs_; }
+  // This machine's bounded pool: band jobs, and fine jobs without redisUrl.
+  JobQueue& localJobs() { return localJobs_; }
   PlanStore& plans() { return plans_; }
   PatientImporter& patients() { return patients_; }
   // Imports run here, one at a time, off the network threads (checking a patient's surfaces takes
@@ -75,7 +79,9 @@ class PlanningService {
   PlanningOptions options_;
   DataFolderLock lock_;  // before anything that writes into the data folder
   CaseLibrary cases_;
+  JobQueue localJobs_;
   std::unique_ptr<FineJobs> fineJobs_;
+  bool redisJobs_ = false;
   PlanStore plans_;
   ExportStore exports_;
   PatientImporter patients_;

@@ -78,6 +78,7 @@ void PlanningSession::close() {
   work_.close();
   frames_.close();
   service_.fineJobs().cancelOwner(id_);
+  service_.localJobs().cancelOwner(id_);
   service_.exports().dropOwner(id_);  // its download links were on its own page
 }
 
@@ -149,7 +150,10 @@ void PlanningSession::dispatch(const std::string& type, MessageReader& r, const 
                                                           {"view", &PlanningSession::view},
                                                           {"pick", &PlanningSession::pick},
                                                           {"edit_case", &PlanningSession::editCase},
-                                                          {"plan_from_face", &PlanningSession::planFromFace}};
+                                                          {"plan_from_face", &PlanningSession::planFromFace},
+                                                          {"band", &PlanningSession::band},
+                                                          {"band_view", &PlanningSession::bandView},
+                                                          {"export_band", &PlanningSession::exportBand}};
   auto it = handlers.find(type);
   if (it == handlers.end()) {
     std::string known;
@@ -567,6 +571,12 @@ void PlanningSession::confirm(MessageReader& r, const json& id) {
   reply({{"type", "job_queued"}, {"job", job->job}, {"case", c->id}, {"position", job->position}}, id);
 }
 
+PlanningSession::PlanSnapshot PlanningSession::planSnapshot() const {
+  const std::shared_ptr<OpenCase> c = requireOpen();
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return {c->id, c->coarse, c->plan(poses_), posesJson()};
+}
+
 // The newest fine result of the session (for exports), compared with the preview of the same poses.
 void PlanningSession::publishFine(long long job, const std::shared_ptr<OpenCase>& c, Poses poses, FineSolve solved) {
   auto done = std::make_shared<FineResult>(FineResult{job, c->id, solved.model, std::move(solved.x), poses});
@@ -588,7 +598,7 @@ void PlanningSession::cancel(MessageReader& r, const json& id) {
   const std::optional<long long> job = r.optionalInteger("job", 1, std::numeric_limits<long long>::max());
   r.rejectUnknown();
   if (!job) throw ProtocolError("missing_field", "/job: required field is missing", "/job");
-  if (!service_.fineJobs().cancel(id_, *job))
+  if (!service_.fineJobs().cancel(id_, *job) && !service_.localJobs().cancel(id_, *job))
     throw ProtocolError("unknown_job", "/job: no queued or running job " + std::to_string(*job) + " of this session",
                         "/job");
   reply({{"type", "cancelling"}, {"job", *job}}, id);

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "eval/PredictionBand.hpp"
 #include "planning/FaceRequestJson.hpp"
 #include "session/AnatomicalPose.hpp"
 #include "session/FineJob.hpp"
@@ -52,6 +53,22 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   void startOpening(const std::string& caseId, const nlohmann::json& id);
   // An imported patient's landmarks and osteotomies changed (session/CaseEditMessage.cpp).
   void editCase(MessageReader& r, const nlohmann::json& id);
+  // The prediction band (session/BandMessage.cpp): a band job, its extremes shown, its surfaces exported.
+  struct BandResult;
+  void band(MessageReader& r, const nlohmann::json& id);
+  void bandView(MessageReader& r, const nlohmann::json& id);
+  void exportBand(MessageReader& r, const nlohmann::json& id);
+  void runBand(long long job, const std::string& caseId, Resolution resolution,
+               const std::map<std::string, FragmentMotion>& plan, const nlohmann::json& poses,
+               const BandOptions& options, const std::atomic<bool>& cancel);
+  // What a job of the open case's current poses needs; throws case_not_open as requireOpen does.
+  struct PlanSnapshot {
+    std::string caseId;
+    std::shared_ptr<const CaseModel> coarse;
+    std::map<std::string, FragmentMotion> plan;
+    nlohmann::json poses;
+  };
+  PlanSnapshot planSnapshot() const;
   std::string openCaseId() const;  // throws case_not_open as requireOpen does
   void describe(MessageReader& r, const nlohmann::json& id);
   void setPoses(MessageReader& r, const nlohmann::json& id);
@@ -103,6 +120,7 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   std::map<std::string, AnatomicalPose> poses_;
   long long previewSeq_ = 0;
   std::shared_ptr<const FineResult> fine_;  // the newest finished fine job
+  std::shared_ptr<const BandResult> band_;  // the newest finished band job
   std::shared_ptr<SessionView> view_;       // of the open case
   bool renderFailed_ = false;               // said once; no frames after
 };

@@ -37,6 +37,16 @@ void SessionView::postDifference(Eigen::VectorXd valuesMm) {
   pendingDifference_ = std::move(valuesMm);
 }
 
+void SessionView::postBand(std::shared_ptr<const BandSkins> band) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  pendingBand_ = std::move(band);
+}
+
+void SessionView::postBandSurface(const std::string& which) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  pendingBandSurface_ = which;
+}
+
 void SessionView::create() {
   renderer_ = std::make_unique<render::Renderer>(kDefaultWidth, kDefaultHeight, 0);  // no MSAA: 2x the fps
   render::setCase(*renderer_, *model_, render::caseTexture(model_->spec));
@@ -84,19 +94,59 @@ Frame SessionView::render() {
   std::optional<SimState> state;
   ViewRequest view;
   std::optional<Eigen::VectorXd> difference;
+  std::shared_ptr<const BandSkins> band;
+  std::optional<std::string> bandSurface;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     state.swap(pendingState_);
-    if (state) shows_ = std::move(pendingShows_);
+    if (state) stateShows_ = std::move(pendingShows_);
     std::swap(view, pendingView_);
     difference.swap(pendingDifference_);
+    band.swap(pendingBand_);
+    bandSurface.swap(pendingBandSurface_);
   }
-  if (state) {
-    render::setCaseState(*renderer_, *model_, *state);
-    fragmentPoses_ = state->fragments;
+  if (band) band_ = band;
+  if (state) {  // a new solved state: no band surface over it
+    lastState_ = state;
+    bandSurface_ = "off";
   }
-  if (difference) renderer_->setSkinValues(*difference);
+  if (bandSurface && (*bandSurface == "off" || band_)) bandSurface_ = *bandSurface;
+  if (bandSurface_ != "off" && band_) {
+    renderer_->updateSkin(bandSurface_ == "low" ? band_->low : bandSurface_ == "high" ? band_->high : band_->nominal);
+    renderer_->setFragmentPoses(band_->fragments);
+    fragmentPoses_ = band_->fragments;
+    nlohmann::json shows = band_->shows;
+    shows["state"] = "band_" + bandSurface_;
+    shows_ = std::move(shows);
+  } else if (state || bandSurface) {
+    if (lastState_) {
+      render::setCaseState(*renderer_, *model_, *lastState_);
+      fragmentPoses_ = lastState_->fragments;
+    } else {  // nothing solved yet: the rest face
+      renderer_->updateSkin(restSkin_.vertices);
+      fragmentPoses_.assign(model_->scene.fragments.size(), RigidPose::identity());
+      renderer_->setFragmentPoses(fragmentPoses_);
+    }
+    shows_ = stateShows_;
+  }
+  if (difference) {
+    difference_ = std::move(*difference);
+    uploaded_ = Values::None;
+  }
+  if (band) uploaded_ = uploaded_ == Values::Band ? Values::None : uploaded_;
   applyView(view);
+  // The values of the colour map shown: the band's width, else the coarse-vs-fine difference
+  // (zeros until there is one, as before).
+  const bool showBand = options_.colorMap == render::ColorMap::Band;
+  if (showBand && uploaded_ != Values::Band) {
+    renderer_->setSkinValues(band_ ? band_->width : Eigen::VectorXd::Zero(renderer_->skinPositions().cols()));
+    uploaded_ = Values::Band;
+  } else if (!showBand && uploaded_ != Values::Difference &&
+             (difference_.size() > 0 || options_.colorMap == render::ColorMap::Difference)) {
+    renderer_->setSkinValues(difference_.size() > 0 ? difference_
+                                                    : Eigen::VectorXd::Zero(renderer_->skinPositions().cols()));
+    uploaded_ = Values::Difference;
+  }
   placeMarkers();
   const auto t0 = std::chrono::steady_clock::now();
   renderer_->render(camera_, options_, image_);

@@ -38,6 +38,18 @@ class SessionView {
   void postState(const SimState& state, nlohmann::json shows);
   void postView(const ViewRequest& request);
   void postDifference(Eigen::VectorXd valuesMm);
+  // A prediction band of the case's skin (one value and position per display-skin vertex): its
+  // width for the "band" colour map, and the skin at its low and high envelopes and at the nominal
+  // prediction, which postBandSurface shows instead of the solved state.
+  struct BandSkins {
+    Eigen::VectorXd width;
+    Eigen::Matrix3Xd nominal, low, high;
+    std::vector<RigidPose> fragments;  // the plan's poses, for the bones
+    nlohmann::json shows;              // what the band is (its job)
+  };
+  void postBand(std::shared_ptr<const BandSkins> band);
+  // "low", "high", "nominal": that skin of the band drawn; "off": the solved state again.
+  void postBandSurface(const std::string& which);
 
   // The render thread only. Throws RenderError (no EGL, bad texture).
   Frame render();
@@ -57,6 +69,16 @@ class SessionView {
   nlohmann::json shows_ = {{"state", "rest"}};  // render thread: what the drawn state is
   ViewRequest pendingView_;
   std::optional<Eigen::VectorXd> pendingDifference_;
+  std::shared_ptr<const BandSkins> pendingBand_;
+  std::optional<std::string> pendingBandSurface_;
+  // Render thread: the difference and band values (the renderer holds one set of skin values: the
+  // colour map shown says which), the band, the skin drawn from the last state.
+  Eigen::VectorXd difference_;
+  std::shared_ptr<const BandSkins> band_;
+  enum class Values { None, Difference, Band } uploaded_ = Values::None;
+  std::optional<SimState> lastState_;
+  nlohmann::json stateShows_ = {{"state", "rest"}};  // what lastState_ is
+  std::string bandSurface_ = "off";
 
   std::unique_ptr<render::Renderer> renderer_;  // render thread from here on
   std::unique_ptr<render::JpegEncoder> jpeg_;

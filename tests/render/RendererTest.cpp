@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "RenderPhantom.hpp"
+#include "render/ColorScale.hpp"
 #include "render/RenderError.hpp"
 #include "render/SurfaceDifference.hpp"
 
@@ -150,6 +151,30 @@ TEST_F(Renderer, DifferenceMapColoursBySignOnTheRightSide) {
   const Eigen::Vector3i pl = pixel(img, int(0.5 * (nose.x + left.x)), int(0.5 * (nose.y + left.y)));
   EXPECT_GT(pr.x() - pr.z(), 40) << pr.transpose();
   EXPECT_GT(pl.z() - pl.x(), 40) << pl.transpose();
+}
+
+// The band-width scale is sequential and its own: a wide band (2 mm) on the patient's right is dark
+// blue-purple, no width on the left near white, neither red like the difference map's outward side.
+TEST_F(Renderer, BandMapDarkensWithTheWidth) {
+  auto r = phantomRenderer();
+  const Eigen::Matrix3Xd& v = model().tissue.skin.vertices;
+  Eigen::VectorXd values(v.cols());
+  for (Eigen::Index i = 0; i < v.cols(); ++i) values[i] = model().spec.frame.right.dot(v.col(i)) > 0 ? 2.0 : 0.0;
+  RenderOptions o;
+  o.colorMap = ColorMap::Band;
+  EXPECT_THROW(r->render(camera(ClinicalView::Frontal, *r, o), o), RenderError);  // no values yet
+  r->setSkinValues(values);
+  const Camera cam = camera(ClinicalView::Frontal, *r, o);
+  const RgbImage img = r->render(cam, o);
+  const ProjectedPoint nose = cam.project(softLandmark("pronasale"), kWidth, kHeight);
+  const ProjectedPoint right = cam.project(softLandmark("cheek_right"), kWidth, kHeight);
+  const ProjectedPoint left = cam.project(softLandmark("cheek_left"), kWidth, kHeight);
+  const Eigen::Vector3i wide = pixel(img, int(0.5 * (nose.x + right.x)), int(0.5 * (nose.y + right.y)));
+  const Eigen::Vector3i none = pixel(img, int(0.5 * (nose.x + left.x)), int(0.5 * (nose.y + left.y)));
+  EXPECT_GT(wide.z() - wide.x(), 40) << wide.transpose();  // blue over red
+  EXPECT_GT(none.sum(), wide.sum() + 200) << none.transpose() << " / " << wide.transpose();
+  EXPECT_EQ(bandScale(2.0).title, "band width (mm)");
+  EXPECT_EQ(parseColorMap("band"), ColorMap::Band);
 }
 
 // Vertices flagged out of the map (outside a region of interest) are grey whatever their value;

@@ -1,0 +1,176 @@
+// The prediction band in a planning session (issue 21, A.2 and A.3; docs/protocol.md,
+// "Prediction band"): `band` queues a band job of the current poses on the job queue the fine jobs
+// use; when it is done the band's width becomes the view's "band" colour map and `band_view` flips
+// the drawn skin between the band's low and high envelopes; `export_band` writes those surfaces.
+#include <chrono>
+
+#include "eval/PredictionBandJson.hpp"
+#include "mesh/SurfaceImport.hpp"
+#include "session/BandJob.hpp"
+#include "session/PlanningSession.hpp"
+#include "session/SkinExport.hpp"
+
+namespace orthosim::server {
+using nlohmann::json;
+
+struct PlanningSession::BandResult {
+  long long job = 0;
+  std::string caseId;
+  std::string resolution;
+  SkinEnvelope envelope;
+};
+
+void PlanningSession::band(MessageReader& r, const json& id) {
+  const PlanSnapshot s = planSnapshot();
+  const std::string resolutionName = r.has("resolution") ? r.string("resolution") : "coarse";
+  BandOptions options;
+  options.design.rangeScale = r.number("range_scale", 1.0, 0.01, 2.0, "(times the default ranges)");
+  options.design.corners = r.boolean("corners", true);
+  r.rejectUnknown();
+  const Resolution resolution = bandResolution(resolutionName);
+  if (s.coarse->tissue.skin.numVertices() == 0)
+    throw ProtocolError("no_skin", "case '" + s.caseId + "' has no skin surface: there is no band to show");
+  size_t solves = 0;
+  try {  // refused now rather than in the job: a range the case's nominal cannot take
+    solves = parameterDesign(designNominal(*s.coarse), options.design).runs.size();
+  } catch (const std::invalid_argument& e) {
+    throw ProtocolError("bad_value", std::string("/range_scale: ") + e.what(), "/range_scale");
+  }
+  auto self = shared_from_this();
+  const std::optional<long long> job = service_.localJobs().submit(
+      id_,
+      [self, s, resolution, options](long long job, const std::atomic<bool>& cancel) {
+        self->runBand(job, s.caseId, resolution, s.plan, s.poses, options, cancel);
+      },
+      [self](long long job) {
+        self->reply({{"type", "job_cancelled"}, {"job", job}, {"kind", "band"}, {"phase", "queued"}}, nullptr);
+      });
+  if (!job) throw ProtocolError("busy", "the job queue is full; try again when a job has finished");
+  reply({{"type", "job_queued"},
+         {"job", *job},
+         {"kind", "band"},
+         {"case", s.caseId},
+         {"resolution", resolutionName},
+         {"solves", solves},
+         {"position", service_.localJobs().position(*job).value_or(0)}},
+        id);
+}
+
+void PlanningSession::runBand(long long job, const std::string& caseId, Resolution resolution,
+                              const std::map<std::string, FragmentMotion>& plan, const json& poses,
+                              const BandOptions& options, const std::atomic<bool>& cancel) {
+  try {
+    const JobReport report = [this](json message) { reply(std::move(message), nullptr); };
+    std::optional<BandSolve> solved =
+        runBandJob(job, service_.cases(), caseId, resolution, plan, options, cancel, report);
+    if (!solved) return;
+    const PredictionBand& b = solved->band;
+    auto done = std::make_shared<BandResult>(BandResult{job, caseId, resolutionName(resolution), b.envelope});
+    std::shared_ptr<SessionView> view;
+    bool sameCase = false;
+    int viewVertices = 0;  // of the open case's display skin
+    try {
+      const PlanSnapshot open = planSnapshot();
+      sameCase = open.caseId == caseId;
+      viewVertices = open.coarse->tissue.skin.numVertices();
+    } catch (const ProtocolError&) {  // closed or another case opening: nothing to show it on
+    }
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (sameCase) {
+        band_ = done;
+        view = view_;
+      }
+    }
+    json message = {{"type", "band_done"},      {"job", job},
+                    {"case", caseId},           {"resolution", resolutionName(resolution)},
+                    {"poses", poses},           {"band", predictionBandJson(b)},
+                    {"time_s", solved->seconds}};
+    // The display skin is the case's full-resolution skin at both resolutions; the view draws it.
+    const bool shown = view && b.envelope.nominal.numVertices() == viewVertices;
+    if (shown) {
+      auto skins = std::make_shared<SessionView::BandSkins>();
+      skins->width = b.envelope.width();
+      skins->nominal = b.envelope.nominal.vertices;
+      skins->low = b.envelope.lowSurface().vertices;
+      skins->high = b.envelope.highSurface().vertices;
+      skins->fragments = b.nominal.fragments;
+      skins->shows = {{"band_job", job}};
+      view->postBand(std::move(skins));
+    }
+    message["view"] = shown;
+    reply(std::move(message), nullptr);
+    if (shown) requestFrame();
+  } catch (const std::exception& e) {
+    reply({{"type", "job_failed"},
+           {"job", job},
+           {"kind", "band"},
+           {"message", std::string("the band job failed: ") + e.what()}},
+          nullptr);
+  }
+}
+
+void PlanningSession::bandView(MessageReader& r, const json& id) {
+  const std::string caseId = openCaseId();
+  const std::string surface = r.string("surface");
+  r.rejectUnknown();
+  if (surface != "low" && surface != "high" && surface != "nominal" && surface != "off")
+    throw ProtocolError("bad_value", "/surface: '" + surface + "' is not one of low, high, nominal, off", "/surface");
+  std::shared_ptr<SessionView> v;
+  long long job = 0;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (!band_ || band_->caseId != caseId)
+      throw ProtocolError("no_band", "there is no prediction band of case '" + caseId + "' yet: send 'band' first");
+    v = view_;
+    job = band_->job;
+  }
+  if (v) {
+    v->postBandSurface(surface);
+    requestFrame();
+  }
+  reply({{"type", "band_view"}, {"surface", surface}, {"job", job}}, id);
+}
+
+void PlanningSession::exportBand(MessageReader& r, const json& id) {
+  const std::string caseId = openCaseId();
+  const std::string surface = r.string("surface");
+  const std::string format = skinExportFormat(r.string("format"));
+  r.rejectUnknown();
+  if (surface != "low" && surface != "high" && surface != "nominal")
+    throw ProtocolError("bad_value", "/surface: '" + surface + "' is not one of low, high, nominal", "/surface");
+  std::shared_ptr<const BandResult> done;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (band_ && band_->caseId == caseId) done = band_;
+  }
+  if (!done)
+    throw ProtocolError("no_band", "there is no prediction band of case '" + caseId + "' yet: send 'band' first");
+  auto self = shared_from_this();
+  work_.submit(
+      [self, done, surface, format, id](const std::atomic<bool>&) {
+        try {
+          const SurfaceMesh mesh = surface == "low"    ? done->envelope.lowSurface()
+                                   : surface == "high" ? done->envelope.highSurface()
+                                                       : done->envelope.nominal;
+          std::string bytes = exportSurfaceBytes(mesh, format);
+          const std::string fileName = done->caseId + "-band-" + surface + "-" + done->resolution + "." + format;
+          const std::size_t size = bytes.size();
+          const std::string type = format == "stl" ? "model/stl" : format == "obj" ? "model/obj" : "application/x-ply";
+          const std::string exportId = self->service_.exports().add(self->id_, fileName, type, std::move(bytes));
+          self->reply({{"type", "exported"},
+                       {"format", format},
+                       {"result", "band_" + surface},
+                       {"job", done->job},
+                       {"file_name", fileName},
+                       {"bytes", size},
+                       {"url", "/api/exports/" + exportId}},
+                      id);
+        } catch (const std::exception& e) {
+          self->sendError("export_failed", std::string("export failed: ") + e.what(), "", id);
+        }
+      },
+      SerialWork::Kind::Ordered);
+}
+
+}  // namespace orthosim::server
