@@ -56,9 +56,13 @@ std::optional<SubmittedJob> RedisFineJobs::submit(FineJobRequest request, FineJo
   JobMessage m;
   m.job = job.name;
   m.caseId = request.caseId;
-  // The case file the session planned on (its coarse model is built): a worker refuses the job
-  // when its copy of the case differs.
-  m.caseHash = caseContentHash(cases_.model(request.caseId, Resolution::Coarse)->spec);
+  // The case's files as they are now (what an in-process job would solve on): a worker refuses
+  // the job when its copy of the case differs.
+  try {
+    m.caseHash = caseContentHash(cases_.spec(request.caseId));
+  } catch (const std::exception& e) {
+    throw JobsUnavailable(std::string("the case cannot be read to queue its job: ") + e.what());
+  }
   m.replyStream = replyStream_;
   m.plan = request.plan;
   int position = 0;
