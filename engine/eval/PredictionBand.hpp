@@ -79,13 +79,13 @@ struct PredictionBand {
   int converged() const;
 };
 
-// The band of `plan` on `model` (its spec, tissue and skin). Throws std::runtime_error when the
-// nominal solve fails (there is no band without it), std::invalid_argument for a bad design or a
-// case without a skin. A cancel returns at once with cancelled set.
 // The design's nominal of a case: its Poisson's ratio and blend width, whether its scene has
 // contact, the bond distance of its derived bonded nodes (volume cases).
 DesignNominal designNominal(const CaseModel& model);
 
+// The band of `plan` on `model` (its spec, tissue and skin). Throws std::runtime_error when the
+// nominal solve fails (there is no band without it), std::invalid_argument for a bad design or a
+// case without a skin. A cancel returns at once with cancelled set.
 PredictionBand predictionBand(const CaseModel& model, const std::map<std::string, FragmentMotion>& plan,
                               const BandOptions& options = {}, const BandControl& control = {});
 

@@ -15,6 +15,7 @@
 #include <iostream>
 #include <map>
 
+#include "cli/BenchContext.hpp"
 #include "cli/Commands.hpp"
 #include "eval/Cohort.hpp"
 #include "eval/PredictionBandJson.hpp"
@@ -24,40 +25,10 @@ namespace orthosim::cli {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
-
-std::string loadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string oneMinute;
-  return in >> oneMinute ? oneMinute : std::string("unknown");
-}
-
-std::string utcNow() {
-  const std::time_t t = std::time(nullptr);
-  char s[32];
-  std::strftime(s, sizeof s, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
-  return s;
-}
-
-std::vector<CohortPatient> choose(const BandCohortBenchOptions& o) {
-  const std::vector<CohortPatient>& all = cohortPatients();
-  if (o.patientIds.empty())
-    return {all.begin(), all.begin() + (o.patients < 0 ? all.size() : std::min<size_t>(o.patients, all.size()))};
-  std::vector<CohortPatient> out;
-  for (const std::string& id : o.patientIds) {
-    const auto it = std::find_if(all.begin(), all.end(), [&](const CohortPatient& p) { return p.id == id; });
-    if (it == all.end()) throw std::invalid_argument("--patient: no patient '" + id + "' in the cohort (M1..M12)");
-    out.push_back(*it);
-  }
-  return out;
-}
-
-}  // namespace
-
 int runBandCohortBench(const BandCohortBenchOptions& o) {
   std::vector<CohortPatient> patients;
   try {
-    patients = choose(o);
+    patients = selectPatients(o.patients, o.patientIds);
   } catch (const std::exception& e) {
     std::cerr << "orthosim: " << e.what() << "\n";
     return 1;

@@ -17,6 +17,7 @@
 #include <thread>
 #include <utility>
 
+#include "cli/BenchContext.hpp"
 #include "cli/Commands.hpp"
 #include "eval/Cohort.hpp"
 #include "eval/CohortJson.hpp"
@@ -33,36 +34,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// The machine is shared: the report says how busy it was (1-minute load average).
-std::string loadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string oneMinute;
-  return in >> oneMinute ? oneMinute : std::string("unknown");
-}
-
-std::string utcNow() {
-  const std::time_t t = std::time(nullptr);
-  char s[32];
-  std::strftime(s, sizeof s, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
-  return s;
-}
-
-// The first --patients of the cohort, or those named by --patient (in the cohort's order).
-std::vector<CohortPatient> selectPatients(const CohortBenchOptions& opt) {
-  const std::vector<CohortPatient>& all = cohortPatients();
-  if (opt.patientIds.empty())
-    return {all.begin(), all.begin() + (opt.patients < 0 ? all.size() : std::min<size_t>(opt.patients, all.size()))};
-  std::string known;
-  for (const CohortPatient& p : all) known += (known.empty() ? "" : ", ") + p.id;
-  for (const std::string& id : opt.patientIds)
-    if (std::none_of(all.begin(), all.end(), [&](const CohortPatient& p) { return p.id == id; }))
-      throw std::invalid_argument("--patient: no patient '" + id + "' in the cohort (" + known + ")");
-  std::vector<CohortPatient> out;
-  for (const CohortPatient& p : all)
-    if (std::find(opt.patientIds.begin(), opt.patientIds.end(), p.id) != opt.patientIds.end()) out.push_back(p);
-  return out;
-}
-
 // A landmark's distance to the reference in a 6-wide column; n/a when not measured.
 std::string mm(double d) {
   char s[16];
@@ -77,7 +48,7 @@ std::string mm(double d) {
 
 int runCohortBench(const CohortBenchOptions& opt) {
   try {
-    const std::vector<CohortPatient> cohort = selectPatients(opt);
+    const std::vector<CohortPatient> cohort = selectPatients(opt.patients, opt.patientIds);
     const int n = static_cast<int>(cohort.size());
     if (n < 1 && opt.facePath.empty()) throw std::invalid_argument("no patient and no --face: nothing to measure");
     if (opt.coarseTriangles < 200 || opt.fineTriangles <= opt.coarseTriangles ||

@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <iostream>
 
+#include "cli/BenchContext.hpp"
 #include "cli/Commands.hpp"
 #include "eval/Cohort.hpp"
 #include "eval/Statistics.hpp"
@@ -88,9 +89,10 @@ int runFaceBench(const FaceBenchOptions& o) {
   std::vector<FaceRow> rows;
   int status = 0;
   std::cout << std::fixed << std::setprecision(3);
+  std::cout << "planning from the face on the cohort, coarse, " << utcNow() << ", load " << loadAverage() << "\n";
   std::cout << "patient  procedure                 free targets iterations solves  time_s  miss_mm  bone_mm  reached\n";
-  const std::vector<CohortPatient>& all = cohortPatients();
-  for (size_t i = 0; i < all.size() && static_cast<int>(i) < o.patients; ++i) {
+  const std::vector<CohortPatient> all = selectPatients(o.patients, {});
+  for (size_t i = 0; i < all.size(); ++i) {
     try {
       const FaceRow r = measure(all[i], dir, o);
       rows.push_back(r);
@@ -123,7 +125,9 @@ int runFaceBench(const FaceBenchOptions& o) {
     std::cout << "median: " << median(iterations) << " iterations, " << median(t) << " s, largest miss " << median(miss)
               << " mm, bone error " << median(bone) << " mm (worst " << *std::max_element(bone.begin(), bone.end())
               << " mm)\n";
-  if (!o.jsonPath.empty()) std::ofstream(o.jsonPath) << json{{"repeats", o.repeats}, {"patients", out}}.dump(2) << "\n";
+  if (!o.jsonPath.empty())
+    std::ofstream(o.jsonPath)
+        << json{{"date", utcNow()}, {"load", loadAverage()}, {"repeats", o.repeats}, {"patients", out}}.dump(2) << "\n";
   return status;
 }
 
