@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "jobs/JobMessage.hpp"
+#include "jobs/JobStream.hpp"
 #include "session/RandomId.hpp"
 
 namespace orthosim::server {
@@ -11,24 +12,12 @@ using nlohmann::json;
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
-namespace {
-
-void ensureGroup(RedisConnection& redis) {
-  try {
-    redis.command({"XGROUP", "CREATE", kJobStream, kWorkerGroup, "0", "MKSTREAM"});
-  } catch (const RedisCommandError& e) {
-    if (std::string(e.what()).find("BUSYGROUP") == std::string::npos) throw;
-  }
-}
-
-}  // namespace
-
 RedisFineJobs::RedisFineJobs(const RedisAddress& redis, CaseLibrary& cases, fs::path dataDir, int capacity)
     : address_(redis), cases_(cases), dataDir_(std::move(dataDir)), capacity_(capacity) {
   serverId_ = randomHexId().substr(0, 16);
   replyStream_ = replyStreamName(serverId_);
   commands_ = std::make_unique<RedisConnection>(address_);
-  ensureGroup(*commands_);
+  ensureWorkerGroup(*commands_);
   relay_ = std::thread([this] { relay(); });
 }
 
@@ -70,7 +59,7 @@ std::optional<SubmittedJob> RedisFineJobs::submit(FineJobRequest request, FineJo
     const std::lock_guard<std::mutex> lock(commandMutex_);
     try {
       RedisConnection& redis = commands();
-      ensureGroup(redis);  // Redis may have restarted empty since
+      ensureWorkerGroup(redis);  // Redis may have restarted empty since
       job.entry = redis.command({"XADD", kJobStream, "*", "job", encodeJobMessage(m)}).string;
       // Entries not yet handed to a worker ("lag", Redis 7), this one included.
       const RedisValue groups = redis.command({"XINFO", "GROUPS", kJobStream});

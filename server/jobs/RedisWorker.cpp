@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "cases/PatientImport.hpp"
+#include "jobs/JobStream.hpp"
 #include "session/FineJob.hpp"
 
 namespace orthosim::server {
@@ -15,14 +16,6 @@ using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
 namespace {
-
-void ensureGroup(RedisConnection& redis) {
-  try {
-    redis.command({"XGROUP", "CREATE", kJobStream, kWorkerGroup, "0", "MKSTREAM"});
-  } catch (const RedisCommandError& e) {
-    if (std::string(e.what()).find("BUSYGROUP") == std::string::npos) throw;
-  }
-}
 
 void say(const std::string& line) { std::cerr << ("orthosim worker: " + line + "\n") << std::flush; }
 
@@ -55,7 +48,7 @@ RedisWorker::RedisWorker(WorkerOptions options)
     } catch (const std::invalid_argument&) {
     }
   RedisConnection redis(options_.redis);
-  ensureGroup(redis);
+  ensureWorkerGroup(redis);
 }
 
 void RedisWorker::run(const std::atomic<bool>& stop) {
@@ -75,7 +68,7 @@ void RedisWorker::serve(int thread, const std::atomic<bool>& stop) {
       if (!redis) {
         redis = std::make_unique<RedisConnection>(options_.redis);
         redis->setTimeout(10s);
-        ensureGroup(*redis);
+        ensureWorkerGroup(*redis);
         if (lost) say("Redis at " + options_.redis.text + " is back");
         lost = false;
       }
