@@ -230,6 +230,13 @@ int main(int argc, char** argv) {
   serve->add_option("--redis", serveOptions.redis,
                     "redis://HOST:PORT: fine jobs go to `orthosim worker` processes through Redis Streams "
                     "(default: run them in this process)");
+  serve->add_option("--replica", serveOptions.replica,
+                    "With --redis: this server's name there, the same after a restart so that its queued jobs "
+                    "are found again; one per running server (default: HOST-PORT)");
+  serve
+      ->add_option("--orphan-grace", serveOptions.orphanGraceSeconds,
+                   "With --redis: seconds a fine job whose session is gone waits for a session to resume it")
+      ->check(CLI::Range(1, 86400));
 
   orthosim::cli::WorkerOptions workerOptions;
   workerOptions.builtinDir = ORTHOSIM_CASES_DIR;

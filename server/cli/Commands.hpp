@@ -189,8 +189,10 @@ struct ServeOptions {
   int unopenedTimeoutSeconds = 300;  // a session that opens no case in this time is closed
   int previewIterations = 100;       // what one preview may spend (server::PlanningOptions)
   double previewSeconds = 15;
-  int maxUploadMb = 256;  // a patient's upload from the page (net::HttpLimits::uploadBytes)
-  std::string redis;      // "redis://HOST:PORT": fine jobs on `orthosim worker` processes; empty: in process
+  int maxUploadMb = 256;         // a patient's upload from the page (net::HttpLimits::uploadBytes)
+  std::string redis;             // "redis://HOST:PORT": fine jobs on `orthosim worker` processes; empty: in process
+  std::string replica;           // with redis: this server's name there (default <host>-<port>; none for port 0)
+  int orphanGraceSeconds = 120;  // with redis: a job whose session is gone waits this long to be resumed
 };
 // Serves HTTP (and later the WebSocket API) until SIGINT or SIGTERM; 0 on a clean stop, 1 when
 // the server cannot start (bad host, port taken, no web folder).

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "cli/Commands.hpp"
+#include "jobs/ReplicaClaim.hpp"
 #include "net/Server.hpp"
 #include "net/TokenFile.hpp"
 
@@ -39,6 +40,9 @@ net::ServerOptions serverOptions(const ServeOptions& options) {
   server.limits.uploadBytes = static_cast<std::size_t>(options.maxUploadMb) * 1024 * 1024;
   server.planning.fineWorkers = options.fineWorkers;
   server.planning.redisUrl = options.redis;
+  server.planning.replica =
+      options.replica.empty() ? server::defaultReplicaName(options.port) : server::checkedReplicaName(options.replica);
+  server.planning.orphanGrace = std::chrono::seconds(options.orphanGraceSeconds);
   server.planning.maxSessions = options.maxSessions;
   server.webSocket.unopenedTimeout = std::chrono::seconds(options.unopenedTimeoutSeconds);
   server.planning.previewIterations = options.previewIterations;

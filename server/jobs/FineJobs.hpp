@@ -5,9 +5,11 @@
 // through the callbacks, from any thread, the same way from either.
 #include <functional>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "cases/CaseLibrary.hpp"
 #include "session/FineJob.hpp"
@@ -25,11 +27,21 @@ struct FineJobRequest {
   std::string owner;   // the session
   std::string caseId;  // a case of the library
   std::map<std::string, FragmentMotion> plan;
+  // What the session needs to publish the outcome (its poses), handed back when another session
+  // takes the job over (resume); kept with the job, never read by the queue.
+  nlohmann::json context = nlohmann::json::object();
 };
 
 struct FineJobCallbacks {
   JobReport report;                                    // job_progress, job_cancelled, job_failed
   std::function<void(long long job, FineSolve)> done;  // the converged solve
+};
+
+// A job taken over by a new session (resume): where it stands.
+struct ResumedJob {
+  long long job;
+  std::string state;        // "queued", "running" or "finished" (its outcome follows at once)
+  nlohmann::json progress;  // its newest job_progress, or null
 };
 
 struct SubmittedJob {
@@ -45,8 +57,21 @@ class FineJobs {
   // False when no job of that owner has this id (finished, or someone else's). A queued job is
   // dropped (job_cancelled, phase "queued"); a running one stops within one Newton iteration.
   virtual bool cancel(const std::string& owner, long long id) = 0;
-  // Every job of the owner, without messages (its session is gone).
+  // Every job of the owner, without messages.
   virtual void cancelOwner(const std::string& owner) = 0;
+  // The owner's session is gone (its connection closed). By default its jobs are cancelled; a
+  // queue that outlives connections keeps them a while for a session that resumes them.
+  virtual void releaseOwner(const std::string& owner) { cancelOwner(owner); }
+  // Jobs of case `caseId` that `former` (a session gone, of this server or of this replica's
+  // previous run) left: they become `owner`'s, with the callbacks `callbacksFor` makes from each
+  // job's context. `announce` is called with them first (also when there are none), then the
+  // outcomes that came while nobody listened are delivered. Nothing to resume by default.
+  virtual void resume(const std::string& former, const std::string& owner, const std::string& caseId,
+                      const std::function<FineJobCallbacks(const nlohmann::json& context)>& callbacksFor,
+                      const std::function<void(const std::vector<ResumedJob>&)>& announce) {
+    (void)former, (void)owner, (void)caseId, (void)callbacksFor;
+    announce({});
+  }
   virtual int running() const = 0;
   virtual int queued() const = 0;
   // Cancels every job and stops (the destructor does this too).

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "jobs/JobMessage.hpp"
+#include "jobs/JobRecords.hpp"
 #include "jobs/JobStream.hpp"
 #include "session/RandomId.hpp"
 
@@ -12,13 +13,49 @@ using nlohmann::json;
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
-RedisFineJobs::RedisFineJobs(const RedisAddress& redis, CaseLibrary& cases, fs::path dataDir, int capacity)
-    : address_(redis), cases_(cases), dataDir_(std::move(dataDir)), capacity_(capacity) {
-  serverId_ = randomHexId().substr(0, 16);
+RedisFineJobs::RedisFineJobs(const RedisAddress& redis, CaseLibrary& cases, fs::path dataDir, int capacity,
+                             RedisJobsOptions options)
+    : address_(redis),
+      cases_(cases),
+      dataDir_(std::move(dataDir)),
+      capacity_(capacity),
+      options_(std::move(options)),
+      durable_(!options_.replica.empty()) {
+  serverId_ = durable_ ? checkedReplicaName(options_.replica) : "s" + randomHexId().substr(0, 15);
   replyStream_ = replyStreamName(serverId_);
   commands_ = std::make_unique<RedisConnection>(address_);
   ensureWorkerGroup(*commands_);
+  if (durable_) {
+    claim_.emplace(*commands_, serverId_);
+    adoptRecords();
+  }
   relay_ = std::thread([this] { relay(); });
+}
+
+void RedisFineJobs::adoptRecords() {
+  const auto now = std::chrono::steady_clock::now();
+  const std::string prefix = serverId_ + "-";
+  for (JobRecord& r : jobRecords(*commands_, serverId_)) {
+    Job job;
+    try {
+      job.id = std::stoll(r.job.substr(prefix.size()));
+    } catch (const std::exception&) {
+      forgetJobRecord(*commands_, serverId_, r.job);
+      continue;
+    }
+    job.name = r.job;
+    job.owner = r.owner;
+    job.caseId = r.caseId;
+    job.entry = r.entry;
+    job.context = std::move(r.context);
+    job.orphanSince = now;
+    jobs_.emplace(job.id, std::move(job));
+  }
+  if (!jobs_.empty())
+    std::cerr << "orthosim serve: " << jobs_.size() << " fine job(s) of replica " << serverId_
+              << " are still out from its previous run; a session that resumes them gets their outcome, "
+                 "the others are cancelled after "
+              << options_.orphanGrace.count() / 1000 << " s\n";
 }
 
 RedisFineJobs::~RedisFineJobs() { shutdown(); }
@@ -29,21 +66,14 @@ RedisConnection& RedisFineJobs::commands() {
 }
 
 std::optional<SubmittedJob> RedisFineJobs::submit(FineJobRequest request, FineJobCallbacks callbacks) {
-  Job job;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (stopping_) throw JobsUnavailable("the server is stopping");
     int waiting = 0;
     for (const auto& [id, j] : jobs_) waiting += j.started ? 0 : 1;
     if (waiting >= capacity_) return std::nullopt;
-    job.id = nextId_++;
   }
-  job.name = serverId_ + "-" + std::to_string(job.id - 1000000000);
-  job.owner = request.owner;
-  job.caseId = request.caseId;
-  job.callbacks = std::make_shared<FineJobCallbacks>(std::move(callbacks));
   JobMessage m;
-  m.job = job.name;
   m.caseId = request.caseId;
   // The case's files as they are now (what an in-process job would solve on): a worker refuses
   // the job when its copy of the case differs.
@@ -54,31 +84,49 @@ std::optional<SubmittedJob> RedisFineJobs::submit(FineJobRequest request, FineJo
   }
   m.replyStream = replyStream_;
   m.plan = request.plan;
+  Job job;
+  job.owner = request.owner;
+  job.caseId = request.caseId;
+  job.context = std::move(request.context);
+  job.callbacks = std::make_shared<FineJobCallbacks>(std::move(callbacks));
   int position = 0;
-  {
-    const std::lock_guard<std::mutex> lock(commandMutex_);
-    try {
-      RedisConnection& redis = commands();
-      ensureWorkerGroup(redis);  // Redis may have restarted empty since
-      job.entry = redis.command({"XADD", kJobStream, "*", "job", encodeJobMessage(m)}).string;
-      // Entries not yet handed to a worker ("lag", Redis 7), this one included.
-      const RedisValue groups = redis.command({"XINFO", "GROUPS", kJobStream});
-      for (const RedisValue& g : groups.array)
-        for (size_t k = 0; k + 1 < g.array.size(); k += 2)
-          if (g.array[k].string == "lag" && g.array[k + 1].kind == RedisValue::Kind::Integer)
-            position = static_cast<int>(std::max(0LL, g.array[k + 1].integer - 1));
-    } catch (const RedisUnavailable& e) {
+  const std::lock_guard<std::mutex> commandLock(commandMutex_);
+  try {
+    RedisConnection& redis = commands();
+    job.id = nextJobNumber(redis);
+    job.name = m.job = serverId_ + "-" + std::to_string(job.id);
+    {  // known before a worker can answer
+      const std::lock_guard<std::mutex> lock(mutex_);
+      jobs_.emplace(job.id, job);
+    }
+    ensureWorkerGroup(redis);  // Redis may have restarted empty since
+    job.entry = redis.command({"XADD", kJobStream, "*", "job", encodeJobMessage(m)}).string;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (auto it = jobs_.find(job.id); it != jobs_.end()) it->second.entry = job.entry;
+    }
+    if (durable_) saveJobRecord(redis, serverId_, {job.name, job.owner, job.caseId, job.entry, job.context});
+    // Entries not yet handed to a worker ("lag", Redis 7), this one included.
+    const RedisValue groups = redis.command({"XINFO", "GROUPS", kJobStream});
+    for (const RedisValue& g : groups.array)
+      for (size_t k = 0; k + 1 < g.array.size(); k += 2)
+        if (g.array[k].string == "lag" && g.array[k + 1].kind == RedisValue::Kind::Integer)
+          position = static_cast<int>(std::max(0LL, g.array[k + 1].integer - 1));
+  } catch (const std::exception& e) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      jobs_.erase(job.id);
+    }
+    if (dynamic_cast<const RedisUnavailable*>(&e)) {
       commands_.reset();
       throw JobsUnavailable(std::string("the fine-job queue is unavailable (") + e.what() +
                             "); the job was not queued, confirm again when it is back");
-    } catch (const RedisCommandError& e) {
-      throw JobsUnavailable(std::string("the fine-job queue refused the job (") + e.what() + ")");
     }
+    if (dynamic_cast<const RedisCommandError*>(&e))
+      throw JobsUnavailable(std::string("the fine-job queue refused the job (") + e.what() + ")");
+    throw;
   }
-  const SubmittedJob submitted{job.id, position};
-  const std::lock_guard<std::mutex> lock(mutex_);
-  jobs_.emplace(job.id, std::move(job));
-  return submitted;
+  return SubmittedJob{job.id, position};
 }
 
 bool RedisFineJobs::setCancel(const Job& job) {
@@ -86,6 +134,7 @@ bool RedisFineJobs::setCancel(const Job& job) {
     RedisConnection& redis = commands();
     redis.command({"SET", cancelKey(job.name), "1", "EX", "86400"});
     if (!job.started && !job.entry.empty()) redis.command({"XDEL", kJobStream, job.entry});
+    if (durable_) forgetJobRecord(redis, serverId_, job.name);
     return true;
   } catch (const std::exception& e) {
     commands_.reset();
@@ -94,12 +143,23 @@ bool RedisFineJobs::setCancel(const Job& job) {
   }
 }
 
+void RedisFineJobs::forget(const Job& job) {
+  if (!durable_) return;
+  const std::lock_guard<std::mutex> lock(commandMutex_);
+  try {
+    forgetJobRecord(commands(), serverId_, job.name);
+  } catch (const std::exception& e) {
+    commands_.reset();  // the record expires by itself; a later run would cancel the job, done already
+    std::cerr << "orthosim serve: cannot drop the record of job " << job.name << ": " << e.what() << "\n";
+  }
+}
+
 bool RedisFineJobs::cancel(const std::string& owner, long long id) {
   Job job;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     auto it = jobs_.find(id);
-    if (it == jobs_.end() || it->second.owner != owner) return false;
+    if (it == jobs_.end() || it->second.owner != owner || !it->second.callbacks) return false;
     job = it->second;
     // A job no worker has started is dropped at once; a worker that picked it up meanwhile sees
     // its cancel key before it starts solving.
@@ -129,6 +189,60 @@ void RedisFineJobs::cancelOwner(const std::string& owner) {
   for (const Job& j : gone) setCancel(j);
 }
 
+void RedisFineJobs::releaseOwner(const std::string& owner) {
+  if (!durable_) return cancelOwner(owner);
+  const auto now = std::chrono::steady_clock::now();
+  const std::lock_guard<std::mutex> lock(mutex_);
+  for (auto& [id, j] : jobs_)
+    if (j.owner == owner && !j.orphanSince) {
+      j.callbacks.reset();
+      j.orphanSince = now;
+    }
+}
+
+void RedisFineJobs::resume(const std::string& former, const std::string& owner, const std::string& caseId,
+                           const std::function<FineJobCallbacks(const json& context)>& callbacksFor,
+                           const std::function<void(const std::vector<ResumedJob>&)>& announce) {
+  std::vector<ResumedJob> resumed;
+  std::vector<Job> finished;  // their outcome came while nobody listened
+  std::vector<std::string> names;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (auto it = jobs_.begin(); it != jobs_.end();) {
+      Job& j = it->second;
+      if (j.owner != former || j.caseId != caseId || !j.orphanSince) {
+        ++it;
+        continue;
+      }
+      j.owner = owner;
+      j.orphanSince.reset();
+      j.callbacks = std::make_shared<FineJobCallbacks>(callbacksFor(j.context));
+      names.push_back(j.name);
+      resumed.push_back({j.id, j.outcome ? "finished" : j.started ? "running" : "queued", j.progress});
+      if (j.outcome) {
+        finished.push_back(std::move(j));
+        it = jobs_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+  }
+  if (durable_ && !names.empty()) {
+    const std::lock_guard<std::mutex> lock(commandMutex_);
+    try {
+      for (const std::string& name : names) setJobOwner(commands(), name, owner);
+    } catch (const std::exception& e) {
+      commands_.reset();
+      std::cerr << "orthosim serve: cannot record the new session of resumed jobs: " << e.what() << "\n";
+    }
+  }
+  announce(resumed);
+  for (Job& j : finished) {
+    json outcome = std::move(*j.outcome);
+    deliver(std::move(j), std::move(outcome));
+  }
+}
+
 int RedisFineJobs::running() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   int n = 0;
@@ -154,6 +268,16 @@ void RedisFineJobs::shutdown() {
     jobs_.clear();
   }
   const std::lock_guard<std::mutex> lock(commandMutex_);
+  if (durable_) {  // the jobs, their records and replies stay for this replica's next start
+    if (!gone.empty())
+      std::cerr << "orthosim serve: " << gone.size() << " fine job(s) stay on Redis for the next start of replica "
+                << serverId_ << "\n";
+    try {
+      claim_->release(commands());
+    } catch (const std::exception&) {  // the lease runs out by itself
+    }
+    return;
+  }
   for (const Job& j : gone)    // nobody will read their outcome
     if (!setCancel(j)) break;  // Redis away: stopping does not wait for it job by job
   try {
@@ -170,16 +294,18 @@ void RedisFineJobs::failAll(const std::string& why) {
     jobs_.clear();
   }
   for (const Job& j : gone)
-    j.callbacks->report({{"type", "job_failed"},
-                         {"job", j.id},
-                         {"message", "lost the fine-job queue (" + why +
-                                         "); the job's outcome is unknown, confirm again when the queue is back"}});
+    if (j.callbacks)
+      j.callbacks->report({{"type", "job_failed"},
+                           {"job", j.id},
+                           {"message", "lost the fine-job queue (" + why +
+                                           "); the job's outcome is unknown, confirm again when the queue is back"}});
 }
 
 void RedisFineJobs::relay() {
   std::unique_ptr<RedisConnection> redis;
-  std::string last = "0-0";
-  bool lost = false;  // said once per outage
+  std::string last = "0-0";  // a restarted replica reads what came while it was away
+  bool lost = false;         // said once per outage
+  auto renewed = std::chrono::steady_clock::now();
   while (!stopping_) {
     try {
       if (!redis) {
@@ -188,6 +314,13 @@ void RedisFineJobs::relay() {
         if (lost) std::cerr << "orthosim serve: the fine-job queue at " << address_.text << " is back\n";
         lost = false;
       }
+      if (claim_ && std::chrono::steady_clock::now() - renewed > kReplicaLease / 4) {
+        if (!claim_->renew(*redis))
+          std::cerr << "orthosim serve: another server has taken the replica name " << serverId_
+                    << " (this one was stopped longer than its lease); replies may go astray\n";
+        renewed = std::chrono::steady_clock::now();
+      }
+      cancelExpiredOrphans();
       const RedisValue r = redis->command({"XREAD", "COUNT", "100", "BLOCK", "500", "STREAMS", replyStream_, last});
       if (r.isNil()) continue;
       for (const RedisValue& stream : r.array) {
@@ -200,6 +333,7 @@ void RedisFineJobs::relay() {
             if (fields[k].string == "msg") handleReply(fields[k + 1].string);
         }
       }
+      if (durable_) redis->command({"XTRIM", replyStream_, "MINID", last});  // read: not again after a restart
     } catch (const std::exception& e) {
       redis.reset();
       if (!lost) {
@@ -209,6 +343,32 @@ void RedisFineJobs::relay() {
       }
       for (int i = 0; i < 10 && !stopping_; ++i) std::this_thread::sleep_for(100ms);
     }
+  }
+}
+
+void RedisFineJobs::cancelExpiredOrphans() {
+  const auto now = std::chrono::steady_clock::now();
+  std::vector<Job> expired;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (auto it = jobs_.begin(); it != jobs_.end();)
+      if (it->second.orphanSince && now - *it->second.orphanSince > options_.orphanGrace) {
+        expired.push_back(std::move(it->second));
+        it = jobs_.erase(it);
+      } else {
+        ++it;
+      }
+  }
+  for (const Job& j : expired) {
+    {
+      const std::lock_guard<std::mutex> lock(commandMutex_);
+      setCancel(j);
+    }
+    std::error_code ignored;
+    fs::remove(dataDir_ / resultFileName(j.name), ignored);
+    std::cerr << "orthosim serve: fine job " << j.id << " (case " << j.caseId
+              << ") cancelled: no session resumed it within " << options_.orphanGrace.count() / 1000
+              << " s of its own closing" << (j.outcome ? " (it had finished; its result is dropped)" : "") << "\n";
   }
 }
 
@@ -231,25 +391,37 @@ void RedisFineJobs::handleReply(const std::string& text) {
   if (name.rfind(prefix, 0) != 0) return;
   long long id = 0;
   try {
-    id = std::stoll(name.substr(prefix.size())) + 1000000000;
+    id = std::stoll(name.substr(prefix.size()));
   } catch (const std::exception&) {
     return;
   }
+  reply["job"] = id;
   Job job;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     auto it = jobs_.find(id);
-    if (it == jobs_.end()) return;  // cancelled, or finished already (a reclaimed job's second outcome)
+    if (it == jobs_.end() || it->second.outcome)
+      return;  // cancelled, or finished already (a reclaimed job's second outcome)
     if (type == "job_progress") {
       it->second.started = true;
+      it->second.progress = reply;
+      if (!it->second.callbacks) return;
       job = it->second;
+    } else if (!it->second.callbacks) {  // kept for a session that resumes the job
+      it->second.outcome = std::move(reply);
+      return;
     } else {
       job = std::move(it->second);
       jobs_.erase(it);
     }
   }
-  reply["job"] = id;
-  if (type == "job_done") {
+  if (type == "job_progress") return job.callbacks->report(std::move(reply));
+  deliver(std::move(job), std::move(reply));
+}
+
+void RedisFineJobs::deliver(Job job, json reply) {
+  forget(job);
+  if (reply.value("type", "") == "job_done") {
     boost::asio::post(finishing_, [this, job = std::move(job), reply = std::move(reply)]() mutable {
       finishDone(std::move(job), std::move(reply));
     });

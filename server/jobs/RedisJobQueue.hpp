@@ -8,8 +8,16 @@
 //
 // Redis unreachable on submit: JobsUnavailable (never the in-process pool instead). The
 // connection lost while jobs are out: each gets job_failed saying so; the relay reconnects.
+//
+// Nothing lost (a server with a replica name, `serve --replica`): each job is recorded on Redis
+// (jobs/JobRecords) until its outcome reaches a session. A job whose session is gone (connection
+// closed, or the server stopped and started again under the same name) stays out; its outcome is
+// kept for a session that resumes it (`resume`), and a job nobody resumes within the orphan grace
+// is cancelled, which the server log says. Without a replica name (port 0, tests) the server
+// draws a random one and a stop cancels its jobs, as the in-process pool does.
 #include <atomic>
 #include <boost/asio/thread_pool.hpp>
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -18,19 +26,32 @@
 
 #include "jobs/FineJobs.hpp"
 #include "jobs/RedisConnection.hpp"
+#include "jobs/ReplicaClaim.hpp"
 
 namespace orthosim::server {
+
+struct RedisJobsOptions {
+  std::string replica;                            // checkedReplicaName; empty: a random name, jobs cancelled at stop
+  std::chrono::milliseconds orphanGrace{120000};  // a job without a session is cancelled after this
+};
 
 class RedisFineJobs : public FineJobs {
  public:
   // Connects and creates the consumer group when it is missing; throws RedisUnavailable when
   // Redis cannot be reached (the server does not start).
-  RedisFineJobs(const RedisAddress& redis, CaseLibrary& cases, std::filesystem::path dataDir, int capacity);
+  // With a replica name: throws ReplicaTaken when a live server holds it, and takes over the jobs
+  // that the previous run under the name left (each waits for a session to resume it).
+  RedisFineJobs(const RedisAddress& redis, CaseLibrary& cases, std::filesystem::path dataDir, int capacity,
+                RedisJobsOptions options = {});
   ~RedisFineJobs() override;
 
   std::optional<SubmittedJob> submit(FineJobRequest request, FineJobCallbacks callbacks) override;
   bool cancel(const std::string& owner, long long id) override;
   void cancelOwner(const std::string& owner) override;
+  void releaseOwner(const std::string& owner) override;
+  void resume(const std::string& former, const std::string& owner, const std::string& caseId,
+              const std::function<FineJobCallbacks(const nlohmann::json& context)>& callbacksFor,
+              const std::function<void(const std::vector<ResumedJob>&)>& announce) override;
   int running() const override;
   int queued() const override;
   void shutdown() override;
@@ -45,12 +66,21 @@ class RedisFineJobs : public FineJobs {
     std::string caseId;
     std::string entry;  // stream entry id
     bool started = false;
-    std::shared_ptr<FineJobCallbacks> callbacks;
+    nlohmann::json context;
+    std::shared_ptr<FineJobCallbacks> callbacks;                       // null while no session listens
+    std::optional<std::chrono::steady_clock::time_point> orphanSince;  // its session is gone
+    nlohmann::json progress;                                           // the newest job_progress
+    std::optional<nlohmann::json> outcome;  // done, failed or cancelled while nobody listened
   };
   void relay();
   void handleReply(const std::string& text);
+  // The outcome to the job's session, and its record forgotten.
+  void deliver(Job job, nlohmann::json reply);
   void finishDone(Job job, nlohmann::json reply);
   void failAll(const std::string& why);
+  void adoptRecords();          // the previous run's jobs, each an orphan
+  void cancelExpiredOrphans();  // nobody resumed them within the grace
+  void forget(const Job& job);  // its record, when the replica keeps records
   // With commandMutex_ held: the submit/cancel connection, connected again when it was lost.
   RedisConnection& commands();
   bool setCancel(const Job& job);  // with commandMutex_ held; false when Redis cannot be reached
@@ -59,16 +89,17 @@ class RedisFineJobs : public FineJobs {
   CaseLibrary& cases_;
   std::filesystem::path dataDir_;
   const int capacity_;
+  const RedisJobsOptions options_;
+  const bool durable_;  // a replica name: jobs outlive sessions and this process
   std::string serverId_;
+  std::optional<ReplicaClaim> claim_;
   std::string replyStream_;
 
   std::mutex commandMutex_;
   std::unique_ptr<RedisConnection> commands_;
 
   mutable std::mutex mutex_;
-  std::map<long long, Job> jobs_;
-  // Numbers never shared with the server's own queue (band jobs), so that cancel finds the one job.
-  long long nextId_ = 1000000001;
+  std::map<long long, Job> jobs_;  // by job number (jobs/JobRecords nextJobNumber)
 
   std::atomic<bool> stopping_{false};
   std::thread relay_;

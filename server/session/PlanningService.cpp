@@ -33,9 +33,11 @@ PlanningService::PlanningService(PlanningOptions options)
     fineJobs_ = std::make_unique<InProcessFineJobs>(cases_, localJobs_);
   } else {
     auto redis =
-        std::make_unique<RedisFineJobs>(parseRedisUrl(options_.redisUrl), cases_, options_.dataDir, options_.fineQueue);
-    std::cerr << "orthosim serve: fine jobs go to the workers through Redis at " << options_.redisUrl
-              << " (reply stream " << replyStreamName(redis->serverId()) << ")\n";
+        std::make_unique<RedisFineJobs>(parseRedisUrl(options_.redisUrl), cases_, options_.dataDir, options_.fineQueue,
+                                        RedisJobsOptions{options_.replica, options_.orphanGrace});
+    std::cerr << "orthosim serve: fine jobs go to the workers through Redis at " << options_.redisUrl << " as replica "
+              << redis->serverId() << " (reply stream " << replyStreamName(redis->serverId())
+              << (options_.replica.empty() ? "; no --replica name, so its jobs end with it" : "") << ")\n";
     fineJobs_ = std::move(redis);
     redisJobs_ = true;
   }

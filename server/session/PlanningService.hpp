@@ -31,6 +31,10 @@ struct PlanningOptions {
   // Empty: fine jobs on this machine's pool. "redis://HOST:PORT": on `orthosim worker` processes
   // through Redis Streams (jobs/RedisJobQueue.hpp); the server does not start without it.
   std::string redisUrl;
+  // With redisUrl: this server's name on Redis (jobs/ReplicaClaim; empty: a random one, and a stop
+  // cancels its jobs) and how long a job whose session is gone waits to be resumed.
+  std::string replica;
+  std::chrono::milliseconds orphanGrace{120000};
   int maxSessions = 32;
   PoseLimits limits;
   // What one preview may spend (both tries together: from the last preview, then from rest): an

@@ -77,7 +77,7 @@ void PlanningSession::close() {
   }
   work_.close();
   frames_.close();
-  service_.fineJobs().cancelOwner(id_);
+  service_.fineJobs().releaseOwner(id_);  // on Redis kept a while for a session that resumes them
   service_.localJobs().cancelOwner(id_);
   service_.exports().dropOwner(id_);  // its download links were on its own page
 }
@@ -143,6 +143,7 @@ void PlanningSession::dispatch(const std::string& type, MessageReader& r, const 
                                                           {"preview", &PlanningSession::preview},
                                                           {"confirm", &PlanningSession::confirm},
                                                           {"cancel", &PlanningSession::cancel},
+                                                          {"resume", &PlanningSession::resume},
                                                           {"list_plans", &PlanningSession::listPlans},
                                                           {"save_plan", &PlanningSession::savePlan},
                                                           {"load_plan", &PlanningSession::loadPlan},
@@ -545,10 +546,24 @@ void PlanningSession::confirm(MessageReader& r, const json& id) {
   const std::shared_ptr<OpenCase> c = requireOpen();
   r.rejectUnknown();
   Poses poses;
+  json context;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     poses = poses_;
+    context = {{"poses", posesJson()}};
   }
+  std::optional<SubmittedJob> job;
+  try {
+    // Same case file as the coarse model: same frame and pivots.
+    job = service_.fineJobs().submit({id_, c->id, c->plan(poses), std::move(context)}, fineCallbacks(c, poses));
+  } catch (const JobsUnavailable& e) {
+    throw ProtocolError("jobs_unavailable", e.what());
+  }
+  if (!job) throw ProtocolError("busy", "the fine-job queue is full; try again when a job has finished");
+  reply({{"type", "job_queued"}, {"job", job->job}, {"case", c->id}, {"position", job->position}}, id);
+}
+
+FineJobCallbacks PlanningSession::fineCallbacks(const std::shared_ptr<OpenCase>& c, const Poses& poses) {
   auto self = shared_from_this();
   FineJobCallbacks callbacks;
   callbacks.report = [self](json message) { self->reply(std::move(message), nullptr); };
@@ -560,15 +575,7 @@ void PlanningSession::confirm(MessageReader& r, const json& id) {
                   nullptr);
     }
   };
-  std::optional<SubmittedJob> job;
-  try {
-    // Same case file as the coarse model: same frame and pivots.
-    job = service_.fineJobs().submit({id_, c->id, c->plan(poses)}, std::move(callbacks));
-  } catch (const JobsUnavailable& e) {
-    throw ProtocolError("jobs_unavailable", e.what());
-  }
-  if (!job) throw ProtocolError("busy", "the fine-job queue is full; try again when a job has finished");
-  reply({{"type", "job_queued"}, {"job", job->job}, {"case", c->id}, {"position", job->position}}, id);
+  return callbacks;
 }
 
 PlanningSession::PlanSnapshot PlanningSession::planSnapshot() const {

@@ -36,7 +36,8 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   void handle(const std::string& text);  // one client message
   void refuseOversized(std::size_t bytes, std::size_t limit);
   void refuseBinary();
-  // The connection is gone: cancel previews and this session's fine jobs. Idempotent.
+  // The connection is gone: cancel previews and band jobs; fine jobs are cancelled too, or on
+  // Redis kept a while for a session that resumes them. Idempotent.
   void close();
   // A case is open or being opened (a session that never gets this far holds a slot for nothing).
   bool hasCase() const;
@@ -76,6 +77,11 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   void preview(MessageReader& r, const nlohmann::json& id);
   void confirm(MessageReader& r, const nlohmann::json& id);
   void cancel(MessageReader& r, const nlohmann::json& id);
+  // Takes over the fine jobs a former session of this client left (session/ResumeMessage.cpp).
+  void resume(MessageReader& r, const nlohmann::json& id);
+  // Publishes a fine job's outcome of `poses` on case `c` to this session.
+  FineJobCallbacks fineCallbacks(const std::shared_ptr<OpenCase>& c,
+                                 const std::map<std::string, AnatomicalPose>& poses);
   void listPlans(MessageReader& r, const nlohmann::json& id);
   void savePlan(MessageReader& r, const nlohmann::json& id);
   void loadPlan(MessageReader& r, const nlohmann::json& id);

@@ -1,8 +1,11 @@
 // Fine jobs through Redis Streams (`serve --redis` and `orthosim worker`, docs/deployment.md
 // "Past one machine"), each test with its own real redis-server on a free port: the result equals
 // an in-process solve; a worker killed mid-job is replaced and the job done once; cancel reaches a
-// worker; malformed and stale jobs are refused, not run; Redis stopped gives the documented error.
+// worker; malformed and stale jobs are refused, not run; Redis stopped gives the documented error;
+// nothing is lost when a server restarts or a page loses its connection (resume).
 #include <gtest/gtest.h>
+
+#include <unistd.h>
 
 #include <csignal>
 #include <filesystem>
@@ -14,7 +17,9 @@
 #include "RedisTestServer.hpp"
 #include "TestWait.hpp"
 #include "jobs/JobMessage.hpp"
+#include "jobs/JobRecords.hpp"
 #include "jobs/RedisConnection.hpp"
+#include "jobs/ReplicaClaim.hpp"
 
 namespace orthosim {
 namespace {
@@ -243,6 +248,135 @@ TEST(RedisJobs, RedisStoppedGivesTheDocumentedError) {
                                    logFile("serve-no-redis").string()),
                std::runtime_error);
   EXPECT_NE(test::readFile(logFile("serve-no-redis")).find("cannot be reached"), std::string::npos);
+}
+
+// ---- nothing lost: restarts and dropped connections (resume) -----------------------------------
+
+std::string uniqueReplica(const std::string& stem) { return stem + "-" + std::to_string(::getpid()); }
+
+TEST(RedisJobs, AQueuedJobSurvivesAServerRestartAndTheSessionThatComesBackSeesItFinish) {
+  REQUIRE_REDIS_SERVER();
+  test::RedisTestServer redis;
+  const std::string replica = uniqueReplica("restart");
+  std::string former;
+  long long job = 0;
+  {
+    test::ServerProcess server({"--redis", redis.url(), "--replica", replica});
+    test::WsTestClient ws(server.port());
+    former = ws.welcome()["session"];
+    openPhantom(ws);
+    const json queued = ws.request({{"type", "confirm"}});  // no worker yet: it waits on the stream
+    ASSERT_EQ(queued["type"], "job_queued") << queued.dump();
+    job = queued["job"];
+    EXPECT_GT(job, 1000000000LL);
+    ASSERT_EQ(server.stop(SIGTERM, 20s), 0) << "a clean stop";
+  }
+  server::RedisConnection c(server::parseRedisUrl(redis.url()));
+  EXPECT_EQ(c.command({"XLEN", server::kJobStream}).integer, 1) << "the job is still queued";
+  EXPECT_EQ(server::jobRecords(c, replica).size(), 1u) << "and recorded";
+
+  test::ServerProcess server({"--redis", redis.url(), "--replica", replica}, logFile("restart-serve").string());
+  test::WsTestClient ws(server.port());
+  openPhantom(ws);
+  const json resumed = ws.request({{"type", "resume"}, {"session", former}});
+  ASSERT_EQ(resumed["type"], "resumed") << resumed.dump();
+  ASSERT_EQ(resumed["jobs"].size(), 1u) << resumed.dump();
+  EXPECT_EQ(resumed["jobs"][0]["job"], job);
+  EXPECT_EQ(resumed["jobs"][0]["state"], "queued");
+  EXPECT_NE(test::readFile(logFile("restart-serve")).find("still out from its previous run"), std::string::npos);
+  auto worker = startWorker(redis, "restart-w1");
+  const json done = jobMessage(ws, job, "job_done", 300s);
+  EXPECT_EQ(done["case"], "phantom-0");
+  EXPECT_TRUE(done["figures"]["converged"].get<bool>()) << done.dump();
+  EXPECT_EQ(done["figures"]["resolution"], "fine");
+  // The poses it was queued with travelled: 4 mm of maxillary advance moves the upper lip forward.
+  EXPECT_GT(done["figures"]["landmarks"]["labrale_superius"]["anterior_mm"].get<double>(), 1.5) << done.dump();
+  EXPECT_EQ(ws.request({{"type", "export"}, {"format", "stl"}, {"result", "fine"}})["type"], "exported");
+  EXPECT_TRUE(test::waitUntil([&] { return server::jobRecords(c, replica).empty(); }, 5s, 50ms))
+      << "its record goes with its outcome";
+  // Resumed once only: the same session id again finds nothing.
+  test::WsTestClient again(server.port());
+  openPhantom(again);
+  EXPECT_TRUE(again.request({{"type", "resume"}, {"session", former}})["jobs"].empty());
+}
+
+TEST(RedisJobs, AJobNobodyResumesIsCancelledWithAMessageAndNeverRuns) {
+  REQUIRE_REDIS_SERVER();
+  test::RedisTestServer redis;
+  const std::string replica = uniqueReplica("orphan");
+  long long job = 0;
+  {
+    test::ServerProcess server({"--redis", redis.url(), "--replica", replica, "--orphan-grace", "2"});
+    test::WsTestClient ws(server.port());
+    openPhantom(ws);
+    job = ws.request({{"type", "confirm"}})["job"];
+    ASSERT_EQ(server.stop(SIGTERM, 20s), 0);
+  }
+  test::ServerProcess server({"--redis", redis.url(), "--replica", replica, "--orphan-grace", "2"},
+                             logFile("orphan-serve").string());
+  ASSERT_TRUE(test::waitUntil(
+      [&] { return test::readFile(logFile("orphan-serve")).find("no session resumed it") != std::string::npos; }, 20s,
+      100ms))
+      << test::readFile(logFile("orphan-serve"));
+  EXPECT_NE(test::readFile(logFile("orphan-serve")).find("fine job " + std::to_string(job)), std::string::npos);
+  server::RedisConnection c(server::parseRedisUrl(redis.url()));
+  EXPECT_EQ(c.command({"XLEN", server::kJobStream}).integer, 0) << "taken off the stream";
+  EXPECT_TRUE(server::jobRecords(c, replica).empty());
+  auto worker = startWorker(redis, "orphan-w1");
+  std::this_thread::sleep_for(1500ms);
+  EXPECT_EQ(test::readFile(logFile("orphan-w1")).find("case phantom-0 on"), std::string::npos) << "nothing ran";
+}
+
+TEST(RedisJobs, APageThatLostItsConnectionResumesItsRunningJob) {
+  REQUIRE_REDIS_SERVER();
+  test::RedisTestServer redis;
+  auto worker = startWorker(redis, "resume-w1");
+  test::ServerProcess server({"--redis", redis.url(), "--replica", uniqueReplica("drop")});
+  std::string former;
+  long long job = 0;
+  {
+    test::WsTestClient ws(server.port());
+    former = ws.welcome()["session"];
+    openPhantom(ws);
+    job = ws.request({{"type", "confirm"}})["job"];
+    jobMessage(ws, job, "job_progress", 120s);  // running on the worker
+    ws.close();
+  }
+  test::WsTestClient ws(server.port());
+  openPhantom(ws);
+  const json bad = ws.request({{"type", "resume"}, {"session", "not-an-id"}});
+  EXPECT_EQ(bad["error"], "bad_value") << bad.dump();
+  EXPECT_EQ(bad["path"], "/session");
+  const json resumed = ws.request({{"type", "resume"}, {"session", former}});
+  ASSERT_EQ(resumed["jobs"].size(), 1u) << resumed.dump();
+  EXPECT_NE(resumed["jobs"][0]["state"], "queued") << resumed.dump();
+  jobMessage(ws, job, "job_done", 300s);
+  std::this_thread::sleep_for(500ms);
+  ws.request({{"type", "list_plans"}});
+  EXPECT_EQ(count(ws, "job_done", job), 1);
+}
+
+TEST(RedisJobs, AReplicaNameIsHeldByOneServerAtATime) {
+  REQUIRE_REDIS_SERVER();
+  test::RedisTestServer redis;
+  server::RedisConnection a(server::parseRedisUrl(redis.url())), b(server::parseRedisUrl(redis.url()));
+  auto first = std::make_unique<server::ReplicaClaim>(a, "clinic-1", 0ms);
+  EXPECT_TRUE(first->renew(a));
+  try {
+    server::ReplicaClaim second(b, "clinic-1", 300ms);
+    ADD_FAILURE() << "a second server took a live replica's name";
+  } catch (const server::ReplicaTaken& e) {
+    EXPECT_NE(std::string(e.what()).find("clinic-1"), std::string::npos) << e.what();
+  }
+  server::ReplicaClaim other(b, "clinic-2", 0ms);  // another name is free
+  first->release(a);
+  server::ReplicaClaim after(b, "clinic-1", 0ms);  // released: free at once
+  EXPECT_FALSE(first->renew(a)) << "the name is the new holder's";
+  EXPECT_THROW(server::checkedReplicaName("a/b"), std::invalid_argument);
+  EXPECT_THROW(server::checkedReplicaName(""), std::invalid_argument);
+  EXPECT_EQ(server::checkedReplicaName("clinic_2-a"), "clinic_2-a");
+  EXPECT_EQ(server::defaultReplicaName(0), "");
+  EXPECT_EQ(server::defaultReplicaName(8080).substr(server::defaultReplicaName(8080).size() - 5), "-8080");
 }
 
 }  // namespace
