@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <csignal>
+#include <cstdlib>
 #include <stdexcept>
 #include <thread>
 
@@ -24,6 +25,10 @@ ServerProcess::ServerProcess(const std::vector<std::string>& extraArgs, const st
   if (std::find(extraArgs.begin(), extraArgs.end(), "--data") == extraArgs.end())
     args.insert(args.end(), {"--data", testDataDir(), "--no-warm-up"});
   args.insert(args.end(), extraArgs.begin(), extraArgs.end());
+  // Set by tests/jobs/workflow-through-redis.sh: the same tests, with fine jobs on its workers.
+  if (const char* redis = std::getenv("ORTHOSIM_TEST_REDIS");
+      redis && *redis && std::find(extraArgs.begin(), extraArgs.end(), "--redis") == extraArgs.end())
+    args.insert(args.end(), {"--redis", redis});
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);

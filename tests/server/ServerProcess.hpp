@@ -15,7 +15,8 @@ std::string testDataDir();
 
 class ServerProcess {
  public:
-  // Starts ORTHOSIM_CLI serve --port 0 [--data testDataDir() --no-warm-up] <extraArgs>; throws std::runtime_error when
+  // Starts ORTHOSIM_CLI serve --port 0 [--data testDataDir() --no-warm-up] <extraArgs> [--redis $ORTHOSIM_TEST_REDIS
+  // when set and extraArgs has no --redis]; throws std::runtime_error when
   // the server does not print "listening on http://HOST:PORT" within 30 s. `stderrPath`: the server's stderr goes to
   // this file instead of the test's.
   explicit ServerProcess(const std::vector<std::string>& extraArgs = {}, const std::string& stderrPath = "");
