@@ -22,7 +22,7 @@ const $ = (id) => document.getElementById(id);
 const state = {
   ws: null, caseId: null, fragments: [], poses: {}, limits: { translation_mm: 30, rotation_deg: 30 },
   posesDirty: false, sendTimer: null, lastSend: -Infinity, job: null, nextId: 1, viewInFlight: false,
-  pendingView: null, lastFrameUrl: null, frameTimes: [], lastSolve: null, openAfterList: null, reconnected: false,
+  pendingView: null, lastFrameUrl: null, frameTimes: [], lastSolve: null, openAfterList: null, reconnected: false, session: null, formerSession: null,
   frameSize: null, lastFigures: null,
 };
 const SEND_INTERVAL_MS = 50;  // at most 20 pose updates a second while dragging
@@ -69,7 +69,12 @@ function connect() {
 }
 
 const handlers = {
-  welcome: (m) => { state.limits = m.limits; },
+  welcome: (m) => {
+    state.limits = m.limits;
+    // After a reconnect the former session's fine jobs are resumed once the case is open again.
+    if (state.session && state.session !== m.session) state.formerSession = state.session;
+    state.session = m.session;
+  },
   cases: (m) => {
     const select = $("case-select");
     select.innerHTML = "";
@@ -99,6 +104,10 @@ const handlers = {
   job_progress: (m) => onJob(m, `${m.phase}…`, m.fraction),
   job_done: (m) => onJobDone(m),
   job_cancelled: (m) => onJobEnd(m, "cancelled"),
+  resumed: (m) => {
+    for (const j of m.jobs) onJob(j, `resumed after the reconnect (${j.phase || j.state})`, j.fraction || 0);
+    if (m.jobs.length) say(`${m.jobs.length} fine job(s) of the last connection resumed`);
+  },
   job_failed: (m) => onJobEnd(m, m.message),
   cancelling: () => {},
   saved: (m) => { say(`plan "${m.name}" saved`); send({ type: "list_plans" }); },
@@ -161,6 +170,10 @@ function onOpened(m) {
   setEnabled(true);
   say(`${m.name} open (${m.coarse.tetrahedra} tetrahedra in the coarse model, ${m.seconds.toFixed(1)} s)`);
   send({ type: "list_plans" });
+  if (state.formerSession) {
+    send({ type: "resume", session: state.formerSession });
+    state.formerSession = null;
+  }
   sendView({ size: frameSize() });
   send({ type: "preview" });
 }

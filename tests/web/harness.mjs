@@ -10,8 +10,10 @@ export const cli = process.env.ORTHOSIM_CLI;
 export const dataDir = process.env.ORTHOSIM_TEST_DATA;
 export const artifacts = process.env.ARTIFACT_DIR || ".";
 
-export function startServer(data = dataDir) {
-  const server = spawn(cli, ["serve", "--port", "0", "--data", data, "--no-warm-up"], { stdio: ["ignore", "pipe", "inherit"] });
+// `orthosim serve` on `port` (0: a free one) with `extraArgs`; { server, port: Promise }.
+export function startServer(data = dataDir, extraArgs = [], port0 = 0) {
+  const server = spawn(cli, ["serve", "--port", String(port0), "--data", data, "--no-warm-up", ...extraArgs],
+    { stdio: ["ignore", "pipe", "inherit"] });
   const port = new Promise((resolve, reject) => {
     let out = "";
     server.stdout.on("data", (d) => {
@@ -30,10 +32,19 @@ export function startServer(data = dataDir) {
 export async function withPage(body, options = {}) {
   if (!cli) throw new Error("ORTHOSIM_CLI must name the orthosim executable");
   const { server, port } = startServer(options.dataDir || dataDir);
+  try {
+    const url = `http://127.0.0.1:${await port}/`;
+    await withBrowser((page) => body(page, url));
+  } finally {
+    server.kill("SIGTERM");
+  }
+}
+
+// Runs body(page) in a fresh headless Chromium profile, closed whatever happens.
+export async function withBrowser(body) {
   const userData = mkdtempSync(path.join(tmpdir(), "orthosim-chromium-"));
   let context;
   try {
-    const url = `http://127.0.0.1:${await port}/`;
     context = await chromium.launchPersistentContext(userData, {
       executablePath: "/usr/bin/chromium",
       headless: true,
@@ -42,10 +53,9 @@ export async function withPage(body, options = {}) {
         "--disable-background-networking", "--disable-component-update", "--disable-sync"],
     });
     const page = context.pages()[0] || (await context.newPage());
-    await body(page, url);
+    await body(page);
   } finally {
     if (context) await context.close();
-    server.kill("SIGTERM");
     rmSync(userData, { recursive: true, force: true });
   }
 }
