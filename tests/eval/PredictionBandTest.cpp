@@ -25,7 +25,8 @@ class PhantomBand : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = new fs::path(fs::temp_directory_path() / ("orthosim_band_" + std::to_string(::getpid())));
     const CaseSpec spec = loadCaseFile(writePhantomCase(0, (*dir_ / "case").string()));
-    coarse_ = new CaseModel(buildCaseModel(spec, Resolution::Coarse, {(*dir_ / "cache").string()}));
+    // The tissue from the build tree's cache: each test runs in a process of its own.
+    coarse_ = new CaseModel(buildCaseModel(spec, Resolution::Coarse, {ORTHOSIM_TEST_CACHE_DIR}));
   }
   static void TearDownTestSuite() {
     delete full_;
