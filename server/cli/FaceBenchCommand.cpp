@@ -45,7 +45,9 @@ double boneError(const CaseModel& c, const std::map<std::string, FragmentMotion>
 }
 
 FaceRow measure(const CohortPatient& patient, const fs::path& dir, const FaceBenchOptions& o) {
-  FaceRow row{patient.id, patient.procedure()};
+  FaceRow row;
+  row.id = patient.id;
+  row.procedure = patient.procedure();
   const CaseSpec spec = loadCaseFile(writeCohortCase(patient, (dir / patient.id).string()));
   CaseTissueOptions tissue;
   tissue.cacheDir = (dir / "tissue-cache").string();
