@@ -2,7 +2,8 @@
 // shows its progress (which solve of how many), then the band's width as the "band" colour map,
 // the landmark ranges as a table, buttons that flip the drawn face between the low and high
 // envelopes, and the envelopes' export. Band jobs share the fine jobs' messages; their `kind` is
-// "band", so the fine job's box is left alone.
+// "band", so the fine job's box is left alone. A band is of the poses it was run with: once the
+// preview shows other poses it says so, until the poses are back or a new band is run.
 "use strict";
 
 const band = { job: null, done: null };
@@ -39,7 +40,8 @@ function onBandDone(m) {
   $("band-status").innerHTML = `Band job ${m.job} done: ${b.converged} of ${b.solves} solves converged in ` +
     `${m.time_s.toFixed(1)} s (${m.resolution}). Band width up to <b>${b.width.max_mm.toFixed(2)} mm</b>; ` +
     `${(b.width.share_over_1mm * 100).toFixed(1)}% of the skin over 1 mm.` +
-    (failed.length ? ` Left out (did not converge): ${failed.map((r) => r.label).join(", ")}.` : "");
+    (failed.length ? ` Left out (did not converge): ${failed.map((r) => r.label).join(", ")}.` : "") +
+    ` <b id="band-stale" hidden>This band is of earlier poses: run it again for the current plan.</b>`;
   let rows = "";
   for (const l of b.landmarks) {
     if (!l.measured) continue;
@@ -69,6 +71,12 @@ function setupBand() {
     handlers[t] = (m) => (m.kind === "band" ? bandJobMessage(t, m) : fine(m));
   }
   handlers.band_done = onBandDone;
+  const preview = handlers.preview;
+  handlers.preview = (m) => {
+    preview(m);
+    const stale = $("band-stale");
+    if (band.done && stale) stale.hidden = JSON.stringify(m.poses) === JSON.stringify(band.done.poses);
+  };
   handlers.band_view = (m) => {
     for (const b of document.querySelectorAll("#band-flip button")) b.classList.toggle("active", b.dataset.band === m.surface);
     $("band-flip").dataset.shown = m.surface;

@@ -72,6 +72,14 @@ test("prediction band: run, colour map, landmark ranges, flip extremes, export",
     await page.waitForFunction(() => !document.querySelector("#band-download").hidden, null, { timeout: 60000 });
     assert.match(await page.locator("#band-download").textContent(), /band-high-coarse\.ply/);
 
+    // Other poses: the band says it is of the earlier ones; back to them, it does not.
+    assert.ok(await page.locator("#band-stale").isHidden());
+    await slider.focus();
+    await page.keyboard.press("ArrowRight");
+    await page.waitForFunction(() => !document.querySelector("#band-stale").hidden, null, { timeout: 60000 });
+    await page.keyboard.press("ArrowLeft");
+    await page.waitForFunction(() => document.querySelector("#band-stale").hidden, null, { timeout: 60000 });
+
     mkdirSync(artifacts, { recursive: true });
     await page.screenshot({ path: path.join(artifacts, "prediction-band.png"), fullPage: true });
     assert.deepEqual(pageErrors, []);
