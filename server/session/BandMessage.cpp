@@ -150,22 +150,11 @@ void PlanningSession::exportBand(MessageReader& r, const json& id) {
   work_.submit(
       [self, done, surface, format, id](const std::atomic<bool>&) {
         try {
-          const SurfaceMesh mesh = surface == "low"    ? done->envelope.lowSurface()
-                                   : surface == "high" ? done->envelope.highSurface()
-                                                       : done->envelope.nominal;
-          std::string bytes = exportSurfaceBytes(mesh, format);
-          const std::string fileName = done->caseId + "-band-" + surface + "-" + done->resolution + "." + format;
-          const std::size_t size = bytes.size();
-          const std::string type = format == "stl" ? "model/stl" : format == "obj" ? "model/obj" : "application/x-ply";
-          const std::string exportId = self->service_.exports().add(self->id_, fileName, type, std::move(bytes));
-          self->reply({{"type", "exported"},
-                       {"format", format},
-                       {"result", "band_" + surface},
-                       {"job", done->job},
-                       {"file_name", fileName},
-                       {"bytes", size},
-                       {"url", "/api/exports/" + exportId}},
-                      id);
+          const SurfaceMesh& mesh = surface == "low"    ? done->envelope.lowSurface()
+                                    : surface == "high" ? done->envelope.highSurface()
+                                                        : done->envelope.nominal;
+          self->offerExport(surfaceExportFile(mesh, done->caseId + "-band-" + surface + "-" + done->resolution, format),
+                            {{"format", format}, {"result", "band_" + surface}, {"job", done->job}}, id);
         } catch (const std::exception& e) {
           self->sendError("export_failed", std::string("export failed: ") + e.what(), "", id);
         }

@@ -686,23 +686,23 @@ void PlanningSession::exportSkin(MessageReader& r, const json& id) {
   work_.submit(
       [self, model, x, format, which, caseId = c->id, id](const std::atomic<bool>&) {
         try {
-          SkinExport file = skinExportFile(*model, *x, caseId, which, format);
-          const std::string fileName = file.fileName;
-          const std::size_t size = file.bytes.size();
-          const std::string exportId = self->service_.exports().add(self->id_, std::move(file.fileName),
-                                                                    std::move(file.contentType), std::move(file.bytes));
-          self->reply({{"type", "exported"},
-                       {"format", format},
-                       {"result", which},
-                       {"file_name", fileName},
-                       {"bytes", size},
-                       {"url", "/api/exports/" + exportId}},
-                      id);
+          self->offerExport(skinExportFile(*model, *x, caseId, which, format), {{"format", format}, {"result", which}},
+                            id);
         } catch (const std::exception& e) {
           self->sendError("export_failed", std::string("export failed: ") + e.what(), "", id);
         }
       },
       SerialWork::Kind::Ordered);
+}
+
+// The file to the service's exports (this session's links), and `exported` with its link.
+void PlanningSession::offerExport(SkinExport file, json message, const json& id) {
+  message["type"] = "exported";
+  message["file_name"] = file.fileName;
+  message["bytes"] = file.bytes.size();
+  message["url"] = "/api/exports/" + service_.exports().add(id_, std::move(file.fileName), std::move(file.contentType),
+                                                            std::move(file.bytes));
+  reply(std::move(message), id);
 }
 
 // ---- frames ----------------------------------------------------------------------------------

@@ -20,6 +20,7 @@
 #include "session/PlanningService.hpp"
 #include "session/SerialWork.hpp"
 #include "session/SessionView.hpp"
+#include "session/SkinExport.hpp"
 
 namespace orthosim::server {
 
@@ -86,6 +87,7 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
   void savePlan(MessageReader& r, const nlohmann::json& id);
   void loadPlan(MessageReader& r, const nlohmann::json& id);
   void exportSkin(MessageReader& r, const nlohmann::json& id);
+  void offerExport(SkinExport file, nlohmann::json message, const nlohmann::json& id);
   void view(MessageReader& r, const nlohmann::json& id);
   void pick(MessageReader& r, const nlohmann::json& id);
   // Poses from soft-tissue landmark targets (session/FaceTargetMessage.cpp).

@@ -15,13 +15,17 @@ std::string skinExportFormat(std::string format) {
   return format;
 }
 
+SkinExport surfaceExportFile(const SurfaceMesh& surface, const std::string& fileStem, const std::string& format) {
+  SkinExport e;
+  e.bytes = exportSurfaceBytes(surface, format);
+  e.contentType = format == "stl" ? "model/stl" : format == "obj" ? "model/obj" : "application/x-ply";
+  e.fileName = fileStem + "." + format;
+  return e;
+}
+
 SkinExport skinExportFile(const CaseModel& model, const Eigen::Matrix3Xd& x, const std::string& caseId,
                           const std::string& result, const std::string& format) {
-  SkinExport e;
-  e.bytes = exportSurfaceBytes(model.deformedSkin(x), format);
-  e.contentType = format == "stl" ? "model/stl" : format == "obj" ? "model/obj" : "application/x-ply";
-  e.fileName = caseId + "-" + result + "." + format;
-  return e;
+  return surfaceExportFile(model.deformedSkin(x), caseId + "-" + result, format);
 }
 
 }  // namespace orthosim::server

@@ -17,6 +17,9 @@ struct SkinExport {
   std::string bytes;
 };
 
+// A surface as <fileStem>.<format>.
+SkinExport surfaceExportFile(const SurfaceMesh& surface, const std::string& fileStem, const std::string& format);
+
 // The model's skin at nodes `x`; `result` ("preview" or "fine") names the file.
 SkinExport skinExportFile(const CaseModel& model, const Eigen::Matrix3Xd& x, const std::string& caseId,
                           const std::string& result, const std::string& format);
