@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # What the tests need besides the build (scripts/setup-deps.sh): Debian's Chromium, Node.js with npm
-# and playwright-core from the npm registry (tests/web/package-lock.json) for the browser tests, and
-# clang-format for the style check.
+# and playwright-core from the npm registry (tests/web/package-lock.json) for the browser tests,
+# clang-format for the style check, and nginx for the test of docker/nginx.conf in front of two
+# server replicas (it runs its own nginx; the package's service is not used).
 # Idempotent: installs only what is missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -12,6 +13,8 @@ command -v clang-format >/dev/null || missing+=(clang-format)  # test style.Clan
 # with Debian's npm package, and any Node.js >= 18 with npm will do.
 command -v node >/dev/null || missing+=(nodejs)
 command -v npm >/dev/null || missing+=(npm)
+# nginx in front of two server replicas (RedisReplicas.NginxKeepsABrowserOnOneReplica, docker/nginx.conf).
+command -v nginx >/dev/null || [ -x /usr/sbin/nginx ] || missing+=(nginx-light)
 if [ ${#missing[@]} -gt 0 ]; then
   echo "setup-test-deps: installing ${missing[*]}"
   SUDO=""

@@ -1,6 +1,6 @@
 #include "mesh/AtomicFile.hpp"
 
-#include <unistd.h>
+#include "mesh/TemporaryName.hpp"
 
 #include <cerrno>
 #include <cstring>
@@ -10,8 +10,8 @@
 namespace orthosim {
 
 void writeFileAtomically(const std::filesystem::path& path, const std::string& text) {
-  // Per process: two processes writing the same file do not share a temporary one.
-  const std::filesystem::path tmp = path.string() + ".tmp" + std::to_string(::getpid());
+  // Per call: two processes (on two machines, too) writing the same file do not share a temporary one.
+  const std::filesystem::path tmp = path.string() + ".tmp" + temporarySuffix();
   {
     std::ofstream out(tmp, std::ios::binary);
     out << text;

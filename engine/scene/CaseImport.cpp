@@ -13,6 +13,7 @@
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
+#include "mesh/TemporaryName.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/LandmarkFrame.hpp"
 #include "scene/Osteotomy.hpp"
@@ -353,7 +354,7 @@ CaseImportReport importCase(const CaseImportInput& input, const std::string& out
   report.scale = scaleFor(input.units, sources.skin, sources.skinName);
   report.labelMap = sources.labelMapNote;
   // Written beside its place and renamed into it: a folder with case.json is always complete.
-  const fs::path tmp = out.parent_path() / ("." + out.filename().string() + ".importing-" + std::to_string(::getpid()));
+  const fs::path tmp = out.parent_path() / ("." + out.filename().string() + ".importing-" + temporarySuffix());
   fs::remove_all(tmp);
   fs::create_directories(tmp);
   try {

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "mesh/TemporaryName.hpp"
 namespace orthosim {
 namespace {
 
@@ -87,7 +88,7 @@ class Reader {
 void writeTissueCache(const std::string& path, const CaseTissue& t) {
   namespace fs = std::filesystem;
   fs::create_directories(fs::path(path).parent_path());
-  const std::string tmp = path + ".tmp" + std::to_string(reinterpret_cast<std::uintptr_t>(&t));
+  const std::string tmp = path + ".tmp" + temporarySuffix();
   {
     std::ofstream out(tmp, std::ios::binary);
     if (!out) throw std::runtime_error(tmp + ": cannot write the tissue cache");

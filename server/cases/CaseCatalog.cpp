@@ -26,14 +26,15 @@ std::vector<CaseEntry> builtInCases(const fs::path& shipped) {
   return cases;
 }
 
-std::vector<CaseEntry> folderCases(const fs::path& dir, std::vector<std::string>* skipped) {
+std::vector<CaseEntry> folderCases(const fs::path& dir, std::vector<std::string>* skipped,
+                                   const std::function<bool(const std::string&)>& known) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw std::runtime_error("cases folder " + dir.string() + " is not a folder");
   std::vector<CaseEntry> cases;
   for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
     const std::string id = e.path().filename().string();
     const fs::path file = e.path() / "case.json";
-    if (!e.is_directory() || !fs::is_regular_file(file)) continue;
+    if (!e.is_directory() || !fs::is_regular_file(file) || (known && known(id))) continue;
     auto skip = [&](const std::string& why) {
       if (skipped) skipped->push_back(e.path().string() + ": " + why);
     };

@@ -3,6 +3,7 @@
 // the project (cases/artisynth_face), and the case folders of `serve --cases DIR` (each
 // DIR/<id>/case.json, docs/scene-format.md).
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -27,8 +28,10 @@ std::vector<CaseEntry> builtInCases(const std::filesystem::path& shipped = {});
 
 // Every DIR/<id>/case.json whose <id> is a valid identifier, sorted by id. Folders that are not
 // cases (no case.json, bad name, unreadable or invalid case file) are left out with a line in
-// `skipped` saying why. Throws std::runtime_error when DIR is not a readable folder.
-std::vector<CaseEntry> folderCases(const std::filesystem::path& dir, std::vector<std::string>* skipped = nullptr);
+// `skipped` saying why. `known`, when given, tells ids to leave out without reading their case
+// file (cases already in a catalog). Throws std::runtime_error when DIR is not a readable folder.
+std::vector<CaseEntry> folderCases(const std::filesystem::path& dir, std::vector<std::string>* skipped = nullptr,
+                                   const std::function<bool(const std::string&)>& known = {});
 
 // {"cases": [{"id", "name", "description", "source", "variant"?}, ...]} (docs/protocol.md).
 nlohmann::json casesJson(const std::vector<CaseEntry>& cases);

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "mesh/TemporaryName.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/CaseImport.hpp"
 #include "scene/LandmarkFrame.hpp"
@@ -73,7 +74,7 @@ void applyCaseEdit(const fs::path& caseFile, const CaseEdit& edit) {
     }
     root["cuts"] = cuts;
   }
-  const fs::path tmp = caseFile.parent_path() / (".case.json.editing-" + std::to_string(::getpid()));
+  const fs::path tmp = caseFile.parent_path() / (".case.json.editing-" + temporarySuffix());
   writeText(tmp, root.dump(2) + "\n");
   try {
     loadCaseFile(tmp.string());  // every cut placed from its landmarks, or the reason why not

@@ -1,29 +1,73 @@
 #include "cases/CaseLibrary.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <stdexcept>
 
 #include "eval/RealFace.hpp"
+#include "mesh/TemporaryName.hpp"
 #include "phantom/PhantomCase.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;
+namespace {
+
+// Which file is at `path` now: a rename over it (an edit, write-beside-then-rename) makes a new
+// inode, and a rewrite in place changes the size or the modification time. Empty when absent.
+std::string fileIdentity(const fs::path& path) {
+  struct stat s {};
+  if (::stat(path.c_str(), &s) != 0) return "";
+  return std::to_string(s.st_dev) + ":" + std::to_string(s.st_ino) + ":" + std::to_string(s.st_size) + ":" +
+         std::to_string(s.st_mtim.tv_sec) + "." + std::to_string(s.st_mtim.tv_nsec);
+}
+
+}  // namespace
 
 CaseLibrary::CaseLibrary(std::vector<CaseEntry> catalog, fs::path dataDir)
     : catalog_(std::move(catalog)), dataDir_(std::move(dataDir)) {}
 
+void CaseLibrary::discoverWith(Discover discover) {
+  const std::lock_guard<std::mutex> lock(catalogMutex_);
+  discover_ = std::move(discover);
+}
+
+void CaseLibrary::discover() const {
+  Discover discover;
+  std::set<std::string> known;
+  {
+    const std::lock_guard<std::mutex> lock(catalogMutex_);
+    if (!discover_) return;
+    discover = discover_;
+    for (const CaseEntry& c : catalog_) known.insert(c.id);
+  }
+  // Read outside the lock (the folder may be on a network file system).
+  std::vector<CaseEntry> found = discover([&](const std::string& id) { return known.count(id) > 0; });
+  const std::lock_guard<std::mutex> lock(catalogMutex_);
+  for (CaseEntry& f : found)
+    if (std::none_of(catalog_.begin(), catalog_.end(), [&](const CaseEntry& c) { return c.id == f.id; }))
+      catalog_.push_back(std::move(f));
+}
+
 std::vector<CaseEntry> CaseLibrary::catalog() const {
+  discover();
   const std::lock_guard<std::mutex> lock(catalogMutex_);
   return catalog_;
 }
 
 std::optional<CaseEntry> CaseLibrary::find(const std::string& id) const {
-  const std::lock_guard<std::mutex> lock(catalogMutex_);
-  for (const CaseEntry& c : catalog_)
-    if (c.id == id) return c;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    {
+      const std::lock_guard<std::mutex> lock(catalogMutex_);
+      for (const CaseEntry& c : catalog_)
+        if (c.id == id) return c;
+    }
+    if (attempt == 0) discover();  // imported through another replica?
+  }
   return std::nullopt;
 }
 
@@ -47,7 +91,7 @@ std::string CaseLibrary::artisynthCaseFile(const CaseEntry& entry) {
     if (in && old == text) return file.string();
   }
   fs::create_directories(dir);
-  const fs::path tmp = dir / ("case.json.writing-" + std::to_string(::getpid()));
+  const fs::path tmp = dir / ("case.json.writing-" + temporarySuffix());
   {
     std::ofstream out(tmp);
     out << text;
@@ -72,7 +116,7 @@ std::string CaseLibrary::caseFile(const CaseEntry& entry) {
   if (fs::is_regular_file(file)) return file.string();
   // Another server on the same data folder may be writing it too: each writes its own folder and
   // the first rename wins (the phantom is deterministic, so either is the same case).
-  const fs::path tmp = dataDir_ / "cases" / (entry.id + ".writing-" + std::to_string(::getpid()));
+  const fs::path tmp = dataDir_ / "cases" / (entry.id + ".writing-" + temporarySuffix());
   fs::remove_all(tmp);
   try {
     writePhantomCase(entry.phantomVariant, tmp.string());
@@ -134,9 +178,24 @@ void CaseLibrary::invalidate(const std::string& id) {
   prototypes_.erase(id);
 }
 
+void CaseLibrary::forgetIfReplaced(const CaseEntry& entry) {
+  if (entry.caseFile.empty()) return;  // built-in cases: written by the servers, never edited
+  const std::string identity = fileIdentity(entry.caseFile);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  std::string& builtFrom = builtFrom_[entry.id];
+  if (builtFrom == identity) return;
+  if (!builtFrom.empty()) {  // edited since, here or by another process: build it again
+    models_.erase({entry.id, Resolution::Coarse});
+    models_.erase({entry.id, Resolution::Fine});
+    prototypes_.erase(entry.id);
+  }
+  builtFrom = identity;  // read before the build: an edit during it is caught by the next call
+}
+
 std::shared_ptr<const CaseModel> CaseLibrary::model(const std::string& id, Resolution resolution) {
   const std::optional<CaseEntry> entry = find(id);
   if (!entry) throw std::invalid_argument("unknown case '" + id + "'");
+  forgetIfReplaced(*entry);
   return once(models_, std::make_pair(id, resolution), [&] { return build(*entry, resolution); });
 }
 

@@ -3,7 +3,11 @@
 // a built CaseModel is immutable, each session solves on its own Model of it, made from one coarse
 // prototype per case whose immutable parts it shares. Phantom cases are
 // written under the data folder the first time they are asked for; tissue meshes are cached there.
+// Several processes may share the data folder (server replicas with --redis, workers): cases
+// another one adds are found there (discoverWith), and a case whose file another one changed (an
+// edit) is built again: a model is kept only while its case file is the one it was built from.
 #include <filesystem>
+#include <functional>
 #include <future>
 #include <map>
 #include <memory>
@@ -27,8 +31,14 @@ class CaseLibrary {
   std::optional<CaseEntry> find(const std::string& id) const;
   // Adds a case; throws std::invalid_argument when its id is taken.
   void add(CaseEntry entry);
+  // Where cases added by other processes sharing the data folder are found (patients imported
+  // through another replica): asked by catalog(), and by find() for an id it does not know, with
+  // a test of the ids known already (to leave out); what it returns joins the catalog.
+  using Discover = std::function<std::vector<CaseEntry>(const std::function<bool(const std::string&)>& known)>;
+  void discoverWith(Discover discover);
   // Forgets the built models of a case whose file changed (an edit): the next model() builds it
-  // again. Sessions holding the old models keep them until they let go.
+  // again. Sessions holding the old models keep them until they let go. A case whose file was
+  // replaced by another process is forgotten the same way by model() itself.
   void invalidate(const std::string& id);
 
   // Blocks until the model is built (or built by another caller); a failed build is not kept,
@@ -47,6 +57,11 @@ class CaseLibrary {
 
  private:
   std::string caseFile(const CaseEntry& entry);
+  // Joins the discovered cases to the catalog.
+  void discover() const;
+  // Forgets the models of a case whose file (folder and imported cases) is not the one they were
+  // built from (another replica edited it).
+  void forgetIfReplaced(const CaseEntry& entry);
   std::string artisynthCaseFile(const CaseEntry& entry);
   std::shared_ptr<const CaseModel> build(const CaseEntry& entry, Resolution resolution);
   // The cached value of `key`, or built by `build` once while other callers wait for it; a failed
@@ -56,12 +71,14 @@ class CaseLibrary {
                                 const Build& build);
 
   mutable std::mutex catalogMutex_;
-  std::vector<CaseEntry> catalog_;
+  mutable std::vector<CaseEntry> catalog_;  // grows by discover() in catalog() and find()
+  Discover discover_;
   std::filesystem::path dataDir_;
   mutable std::mutex mutex_;
   std::mutex writeMutex_;  // writing a built-in case's files
   std::map<std::pair<std::string, Resolution>, std::shared_future<std::shared_ptr<const CaseModel>>> models_;
   std::map<std::string, std::shared_future<std::shared_ptr<const Model>>> prototypes_;
+  std::map<std::string, std::string> builtFrom_;  // case id -> its case file's identity (fileIdentity())
 };
 
 }  // namespace orthosim::server

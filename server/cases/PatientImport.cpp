@@ -8,6 +8,7 @@
 #include <map>
 
 #include "cases/Identifier.hpp"
+#include "mesh/TemporaryName.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;
@@ -130,8 +131,7 @@ ImportedPatient PatientImporter::import(const PatientUpload& upload) {
   const std::lock_guard<std::mutex> lock(mutex_);
   const fs::path out = dataDir_ / "patients" / upload.id;
   checkUpload(upload, cases_, out);
-  const StagingFolder staging{dataDir_ / "imports" /
-                              (upload.id + ".upload-" + std::to_string(::getpid()) + "-" + std::to_string(++staged_))};
+  const StagingFolder staging{dataDir_ / "imports" / (upload.id + ".upload-" + temporarySuffix())};
   fs::create_directories(staging.path);
   fs::create_directories(out.parent_path());
   CaseImportInput input;
@@ -166,13 +166,18 @@ ImportedPatient PatientImporter::import(const PatientUpload& upload) {
   imported.entry.description = "imported patient " + upload.id;
   imported.entry.source = "import";
   imported.entry.caseFile = fs::absolute(out / "case.json");
-  cases_.add(imported.entry);
+  try {
+    cases_.add(imported.entry);
+  } catch (const std::invalid_argument&) {
+    // Found in the folder already (the library looks there for patients imported by other replicas).
+  }
   return imported;
 }
 
-std::vector<CaseEntry> PatientImporter::imported(const fs::path& dataDir, std::vector<std::string>* skipped) {
+std::vector<CaseEntry> PatientImporter::imported(const fs::path& dataDir, std::vector<std::string>* skipped,
+                                                 const std::function<bool(const std::string&)>& known) {
   if (!fs::is_directory(dataDir / "patients")) return {};
-  std::vector<CaseEntry> cases = folderCases(dataDir / "patients", skipped);
+  std::vector<CaseEntry> cases = folderCases(dataDir / "patients", skipped, known);
   for (CaseEntry& c : cases) c.source = "import", c.description = "imported patient " + c.id;
   return cases;
 }

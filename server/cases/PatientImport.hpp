@@ -2,7 +2,7 @@
 // A patient uploaded from the page (issue 20): the files of the "New patient" form become a case
 // folder <data>/patients/<id>/ through the engine's importer (scene/CaseImport), which checks them
 // and writes the folder complete or not at all, and the case joins the library. The uploaded files
-// are staged in <data>/imports/<id>.upload-<pid>-<n>/ under their own names (so that every message
+// are staged in <data>/imports/<id>.upload-<host>-<pid>-<random>/ under their own names (so that every message
 // names the file the user chose) and removed whatever happens.
 #include <filesystem>
 #include <mutex>
@@ -55,14 +55,16 @@ class PatientImporter {
   // Checks, imports and adds the case; one import at a time. Throws PatientImportError.
   ImportedPatient import(const PatientUpload& upload);
 
-  // The patients imported before (<data>/patients/<id>/case.json), for the catalog at start.
-  static std::vector<CaseEntry> imported(const std::filesystem::path& dataDir, std::vector<std::string>* skipped);
+  // The patients imported before (<data>/patients/<id>/case.json), for the catalog at start, and
+  // those imported since through another replica sharing the folder (`known`: ids to leave out,
+  // as folderCases()).
+  static std::vector<CaseEntry> imported(const std::filesystem::path& dataDir, std::vector<std::string>* skipped,
+                                         const std::function<bool(const std::string&)>& known = {});
 
  private:
   std::filesystem::path dataDir_;
   CaseLibrary& cases_;
   std::mutex mutex_;
-  int staged_ = 0;
 };
 
 }  // namespace orthosim::server

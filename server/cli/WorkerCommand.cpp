@@ -7,6 +7,8 @@
 
 #include "cli/Commands.hpp"
 #include "jobs/RedisWorker.hpp"
+#include "session/DataFolderLeftovers.hpp"
+#include "session/DataFolderLock.hpp"
 
 namespace orthosim::cli {
 namespace fs = std::filesystem;
@@ -17,6 +19,13 @@ int runWorker(const WorkerOptions& options) {
     worker.redis = server::parseRedisUrl(options.redis);
     worker.dataDir = dataDirOrDefault(options.dataDir);
     fs::create_directories(worker.dataDir / "jobs");
+    // Shared with the servers started with --redis and the other workers; refused while a server
+    // without --redis has the folder to itself.
+    server::DataFolderLock lock(worker.dataDir, server::DataFolderUse::Shared, "orthosim worker");
+    if (lock.alone())
+      for (const std::string& leftover : server::removeLeftovers(worker.dataDir))
+        std::cerr << "orthosim worker: removed " << leftover << ", left by an interrupted write\n";
+    lock.share();
     worker.cases = caseCatalog(options.builtinDir, options.casesDir, "worker");
     worker.concurrency = options.concurrency;
     worker.visibilityTimeout = std::chrono::milliseconds(static_cast<long long>(options.visibilitySeconds * 1000));

@@ -1,6 +1,7 @@
 #include "jobs/JobMessage.hpp"
 
 #include <unistd.h>
+#include "mesh/TemporaryName.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -175,7 +176,7 @@ static constexpr char kNodesMagic[] = "orthosim-nodes-1\n";
 void writeResultNodes(const std::filesystem::path& file, const Eigen::Matrix3Xd& x) {
   namespace fs = std::filesystem;
   fs::create_directories(file.parent_path());
-  const fs::path tmp = file.string() + ".part-" + std::to_string(::getpid());
+  const fs::path tmp = file.string() + ".part-" + temporarySuffix();
   {
     std::FILE* f = std::fopen(tmp.c_str(), "wb");
     if (!f) throw std::runtime_error("cannot write " + tmp.string() + ": " + std::strerror(errno));

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "mesh/TemporaryName.hpp"
 #include "session/RandomId.hpp"
 
 namespace orthosim::net {
@@ -18,21 +19,27 @@ std::runtime_error fileError(const fs::path& file, const std::string& what) {
   return std::runtime_error("token file " + file.string() + ": " + what);
 }
 
-// O_EXCL: of two servers starting at once, one writes the file and the other reads it.
+// Written whole beside the file and linked into place (link fails when the file exists): of two
+// servers starting at once (replicas sharing the data folder), one makes the file and the other
+// reads it, never half written.
 bool createWith(const fs::path& file, const std::string& token) {
-  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
-  if (fd < 0) {
-    if (errno == EEXIST) return false;
-    throw fileError(file, std::string("cannot create it: ") + std::strerror(errno));
-  }
+  const fs::path tmp = file.string() + ".tmp" + temporarySuffix();
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0) throw fileError(file, std::string("cannot create it: ") + std::strerror(errno));
   const std::string line = token + "\n";
   const bool written = ::write(fd, line.data(), line.size()) == static_cast<ssize_t>(line.size()) && ::fsync(fd) == 0;
+  const int writeErrno = errno;
   ::close(fd);
   if (!written) {
-    fs::remove(file);
-    throw fileError(file, std::string("cannot write it: ") + std::strerror(errno));
+    ::unlink(tmp.c_str());
+    throw fileError(file, std::string("cannot write it: ") + std::strerror(writeErrno));
   }
-  return true;
+  const bool linked = ::link(tmp.c_str(), file.c_str()) == 0;
+  const int linkErrno = errno;
+  ::unlink(tmp.c_str());
+  if (linked) return true;
+  if (linkErrno == EEXIST) return false;
+  throw fileError(file, std::string("cannot create it: ") + std::strerror(linkErrno));
 }
 
 }  // namespace

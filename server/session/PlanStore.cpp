@@ -4,13 +4,13 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 
 #include "cases/Identifier.hpp"
+#include "mesh/TemporaryName.hpp"
 #include "session/ProtocolError.hpp"
 
 namespace orthosim::server {
@@ -29,8 +29,7 @@ void writeAll(int fd, const std::string& text, const fs::path& path) {
 
 // Writes `text` to `target` atomically and durably: temporary file, fsync, rename, fsync folder.
 void replaceFile(const fs::path& target, const std::string& text) {
-  static std::atomic<unsigned> counter{0};
-  const fs::path tmp = target.string() + ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  const fs::path tmp = target.string() + ".tmp" + temporarySuffix();  // unique across replicas' hosts
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw std::runtime_error(tmp.string() + ": cannot create: " + std::strerror(errno));
   try {

@@ -11,14 +11,22 @@ namespace orthosim::server {
 
 PlanningService::PlanningService(PlanningOptions options)
     : options_(std::move(options)),
-      lock_(options_.dataDir),
+      lock_(options_.dataDir, options_.redisUrl.empty() ? DataFolderUse::Alone : DataFolderUse::Shared,
+            options_.redisUrl.empty() ? "orthosim serve" : "orthosim serve --redis"),
       cases_(options_.cases, options_.dataDir),
       localJobs_(options_.fineWorkers, options_.fineQueue, /*niceness=*/10),
       plans_(options_.dataDir / "plans"),
       patients_(options_.dataDir, cases_),
       previewPool_(static_cast<std::size_t>(std::max(1, options_.previewThreads))) {
-  for (const std::string& leftover : removeLeftovers(options_.dataDir))
-    std::cerr << "orthosim serve: removed " << leftover << ", left by an interrupted write\n";
+  // Leftovers are removed only by a process that has the folder to itself: another replica or a
+  // worker may be writing what looks like one.
+  if (lock_.alone())
+    for (const std::string& leftover : removeLeftovers(options_.dataDir))
+      std::cerr << "orthosim serve: removed " << leftover << ", left by an interrupted write\n";
+  else
+    std::cerr << "orthosim serve: the data folder is shared with running replicas or workers; leftovers of "
+                 "interrupted writes are left to the next process that starts alone\n";
+  lock_.share();
   // Patients imported from the page before: after the leftovers went, so none is half-written.
   std::vector<std::string> skipped;
   for (const CaseEntry& c : PatientImporter::imported(options_.dataDir, &skipped)) {
@@ -29,6 +37,10 @@ PlanningService::PlanningService(PlanningOptions options)
     }
   }
   for (const std::string& s : skipped) std::cerr << "orthosim serve: skipped imported patient " << s << "\n";
+  // And those imported later through another replica sharing the folder.
+  cases_.discoverWith([dataDir = options_.dataDir](const std::function<bool(const std::string&)>& known) {
+    return PatientImporter::imported(dataDir, nullptr, known);
+  });
   if (options_.redisUrl.empty()) {
     fineJobs_ = std::make_unique<InProcessFineJobs>(cases_, localJobs_);
   } else {

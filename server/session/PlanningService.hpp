@@ -46,7 +46,8 @@ struct PlanningOptions {
 
 class PlanningService {
  public:
-  // Throws std::runtime_error when another server holds the data folder (DataFolderLock).
+  // Throws std::runtime_error when the data folder is held by a process it cannot share it with
+  // (DataFolderLock: without redisUrl, any other; with it, a server without --redis).
   explicit PlanningService(PlanningOptions options);
   ~PlanningService();
 
