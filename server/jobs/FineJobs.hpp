@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cases/CaseLibrary.hpp"
+#include "jobs/BandJobMessage.hpp"
 #include "session/FineJob.hpp"
 #include "session/JobQueue.hpp"
 
@@ -25,11 +26,19 @@ struct FineJobRequest {
   std::string owner;   // the session
   std::string caseId;  // a case of the library
   std::map<std::string, FragmentMotion> plan;
+  // Another kind of job on the same queue (RedisFineJobs only: `serve --redis`): "band", at
+  // `resolution`, with its options (jobs/BandJobMessage).
+  std::string kind = "fine";
+  Resolution resolution = Resolution::Fine;
+  std::optional<BandJobSpec> band;
 };
 
 struct FineJobCallbacks {
   JobReport report;                                    // job_progress, job_cancelled, job_failed
   std::function<void(long long job, FineSolve)> done;  // the converged solve
+  // Set for a job of another kind than "fine": called instead of `done` with the worker's job_done
+  // message (its result file, relative to the data folder, in "result"), off the relay thread.
+  std::function<void(long long job, nlohmann::json reply)> doneReply;
 };
 
 struct SubmittedJob {

@@ -54,6 +54,9 @@ std::optional<SubmittedJob> RedisFineJobs::submit(FineJobRequest request, FineJo
   }
   m.replyStream = replyStream_;
   m.plan = request.plan;
+  m.kind = request.kind;
+  m.resolution = request.resolution;
+  m.band = request.band;
   int position = 0;
   {
     const std::lock_guard<std::mutex> lock(commandMutex_);
@@ -249,6 +252,12 @@ void RedisFineJobs::handleReply(const std::string& text) {
     }
   }
   reply["job"] = id;
+  if (type == "job_done" && job.callbacks->doneReply) {  // another kind: its own result handler
+    boost::asio::post(finishing_, [job = std::move(job), reply = std::move(reply)]() mutable {
+      job.callbacks->doneReply(job.id, std::move(reply));
+    });
+    return;
+  }
   if (type == "job_done") {
     boost::asio::post(finishing_, [this, job = std::move(job), reply = std::move(reply)]() mutable {
       finishDone(std::move(job), std::move(reply));
