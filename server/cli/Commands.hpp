@@ -100,6 +100,10 @@ struct CohortBenchOptions {
   std::string facePath;                   // the ArtiSynth face folder: its ratios too; empty: not measured
   std::string jsonPath, imagePath;
   std::string dataDir;  // cohort cases and tissue cache (kept); empty: a temporary folder
+  // The runs as jobs on Redis (cli/CohortOnRedis), solved by `orthosim worker` processes that share
+  // dataDir; with spawnWorkers, by that many local workers per round (e.g. 1, 2, 4), timed.
+  std::string redis;
+  std::vector<int> spawnWorkers;
 };
 // `orthosim bench cohort`: the paper's Table 4 on the synthetic cohort, the speed-versus-error
 // plot, the soft-to-hard movement ratios. 0 when every patient is measured, 1 on bad input, 2 when
