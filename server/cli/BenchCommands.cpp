@@ -139,6 +139,10 @@ void BenchCommands::addCohort() {
                    "this machine (processes standing in for machines); wall time and speed-up per round")
       ->delimiter(',')
       ->check(CLI::Range(1, 64));
+  cohort_
+      ->add_option("--spawn-repeats", o.spawnRepeats,
+                   "With --spawn-workers: rounds per count, interleaved (1,2,4,1,2,4,...); median wall times")
+      ->check(CLI::Range(1, 20));
   addRepeats(cohort_, o.repeats, "Solves per run (medians reported)");
   addJson(cohort_, o.jsonPath);
 }

@@ -79,50 +79,60 @@ json runRounds(const CohortBenchOptions& opt, const std::vector<CohortPatient>& 
                   ? "solved by the workers already running (sharing --data)"
                   : "rounds with local `orthosim worker` processes started by the bench, each on a fresh data folder "
                     "(meshing included); the processes stand in for worker machines, but share this machine's cores");
+  // Each count once per repeat, interleaved (1, 2, 4, 1, 2, 4, ...), so that the other load of a
+  // shared machine falls on every count alike; the speed-up is of the medians.
+  const int repeats = opt.spawnWorkers.empty() ? 1 : std::max(1, opt.spawnRepeats);
   json rounds = json::array();
-  double first = 0;
-  for (size_t k = 0; k < counts.size(); ++k) {
-    const int workers = counts[k];
-    const fs::path dir =
-        workers > 0 ? data / ("round-" + std::to_string(k + 1) + "-" + std::to_string(workers) + "-workers") : data;
-    if (workers > 0) fs::remove_all(dir);
-    const std::string loadBefore = loadAverage();
-    const auto t0 = std::chrono::steady_clock::now();
-    std::map<std::string, CohortPatientRuns> runs;
-    {
-      std::optional<LocalWorkers> local;
-      if (workers > 0) local.emplace(opt.redis, dir, workers);
-      runs = runCohortOnRedis(address, cohort, specs, plan, dir);
+  std::map<int, std::vector<double>> walls;
+  int round = 0;
+  for (int rep = 0; rep < repeats; ++rep)
+    for (const int workers : counts) {
+      ++round;
+      const fs::path dir =
+          workers > 0 ? data / ("round-" + std::to_string(round) + "-" + std::to_string(workers) + "-workers") : data;
+      if (workers > 0) fs::remove_all(dir);
+      const std::string loadBefore = loadAverage();
+      const auto t0 = std::chrono::steady_clock::now();
+      std::map<std::string, CohortPatientRuns> runs;
+      {
+        std::optional<LocalWorkers> local;
+        if (workers > 0) local.emplace(opt.redis, dir, workers);
+        runs = runCohortOnRedis(address, cohort, specs, plan, dir);
+      }
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      walls[workers].push_back(wall);
+      const std::string loadAfter = loadAverage();
+      if (workers > 0)
+        std::printf("round %d: %d worker%s: wall %.1f s, load average %s before, %s after\n", round, workers,
+                    workers == 1 ? "" : "s", wall, loadBefore.c_str(), loadAfter.c_str());
+      std::fflush(stdout);
+      rounds.push_back({{"workers", workers > 0 ? json(workers) : json("running")},
+                        {"wall_s", wall},
+                        {"load_average_before", loadBefore},
+                        {"load_average_after", loadAfter}});
+      if (round == 1) remote = std::move(runs);
+      if (workers > 0) fs::remove_all(dir / "cache");  // tissue meshes: rebuilt by every round
     }
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (k == 0) first = wall;
-    const std::string loadAfter = loadAverage();
-    if (workers > 0)
-      std::printf(
-          "round %zu: %d worker%s: wall %.1f s, speed-up %.2fx over round 1, load average %s before, %s after\n", k + 1,
-          workers, workers == 1 ? "" : "s", wall, first / wall, loadBefore.c_str(), loadAfter.c_str());
-    std::fflush(stdout);
-    rounds.push_back({{"workers", workers > 0 ? json(workers) : json("running")},
-                      {"wall_s", wall},
-                      {"load_average_before", loadBefore},
-                      {"load_average_after", loadAfter}});
-    if (k == 0) remote = std::move(runs);
-  }
-  if (counts.size() > 1) {
-    std::printf(
-        "\nspeed-up (wall time of round 1 over each round's; one round per count, not repeated):\n%8s %9s %9s\n",
-        "workers", "wall_s", "speed-up");
-    for (const json& r : rounds)
-      std::printf("%8d %9.1f %8.2fx\n", r["workers"].get<int>(), r["wall_s"].get<double>(),
-                  first / r["wall_s"].get<double>());
+  json speedUp = json::array();
+  if (!opt.spawnWorkers.empty()) {
+    const double base = median(walls[counts[0]]);
+    std::printf("\nspeed-up (median wall time of %d round%s per count, against %d worker%s):\n%8s %9s %9s\n", repeats,
+                repeats == 1 ? "" : "s", counts[0], counts[0] == 1 ? "" : "s", "workers", "wall_s", "speed-up");
+    for (const int workers : counts) {
+      if (speedUp.size() > 0 && speedUp.back()["workers"] == workers) continue;
+      const double m = median(walls[workers]);
+      std::printf("%8d %9.1f %8.2fx\n", workers, m, base / m);
+      speedUp.push_back({{"workers", workers}, {"median_wall_s", m}, {"speed_up", base / m}});
+    }
     std::printf(
         "local processes stand in for worker machines: on this machine's %u hardware threads they share the\n"
-        "cores, so expect at most about %ux; on separate machines each worker has its own.\n",
+        "cores (and whatever else runs here: see the load averages), so expect at most about %ux; on separate\n"
+        "machines each worker has its own.\n",
         std::thread::hardware_concurrency(), std::thread::hardware_concurrency());
   }
   std::printf("the table's solve times are the first round's, measured on the workers\n\n");
   std::fflush(stdout);
-  return {{"url", address.text}, {"spawned", !opt.spawnWorkers.empty()}, {"rounds", rounds}};
+  return {{"url", address.text}, {"spawned", !opt.spawnWorkers.empty()}, {"rounds", rounds}, {"speed_up", speedUp}};
 }
 
 }  // namespace

@@ -104,6 +104,7 @@ struct CohortBenchOptions {
   // dataDir; with spawnWorkers, by that many local workers per round (e.g. 1, 2, 4), timed.
   std::string redis;
   std::vector<int> spawnWorkers;
+  int spawnRepeats = 1;  // rounds per count, interleaved; medians reported
 };
 // `orthosim bench cohort`: the paper's Table 4 on the synthetic cohort, the speed-versus-error
 // plot, the soft-to-hard movement ratios. 0 when every patient is measured, 1 on bad input, 2 when
