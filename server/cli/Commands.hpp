@@ -216,7 +216,7 @@ struct WorkerOptions {
   double visibilitySeconds = 60;  // a job whose worker stops claiming it this long goes to another
   std::string name;               // consumer name; empty: <host>-<pid>
 };
-// Runs fine jobs from Redis until SIGINT or SIGTERM (0); 1 when it cannot start (bad address,
+// Runs fine, band and cohort jobs from Redis until SIGINT or SIGTERM (0); 1 when it cannot start (bad address,
 // Redis unreachable, data folder not writable), with the reason on stderr.
 int runWorker(const WorkerOptions& options);
 

@@ -1,11 +1,12 @@
 #pragma once
-// `orthosim worker`: runs fine, band and cohort jobs (jobs/BandWorkerJob, jobs/CohortWorkerJob) from the Redis stream
-// kJobStream as a member of the consumer group kWorkerGroup, on cases read from the shared data folder
-// (docs/deployment.md "Past one machine"). Per job: the message is checked (a malformed or foreign one is logged,
-// acknowledged and, when it names where to, answered with job_failed, never run); the case's content hash must match
-// the job's (a stale or foreign job is refused the same way); the solve is runFineJob's, with progress on the job's
-// reply stream; the converged nodes are written atomically into the data folder and only then is job_done sent and the
-// entry acknowledged (XACK).
+// `orthosim worker`: runs jobs from the Redis stream kJobStream as a member of the consumer group
+// kWorkerGroup, on cases read from the shared data folder (docs/deployment.md "Past one machine"):
+// fine jobs here, band jobs (jobs/BandWorkerJob) and cohort jobs (jobs/CohortWorkerJob). Per job:
+// the message is checked (a malformed or foreign one is logged, acknowledged and, when it names
+// where to, answered with job_failed, never run); the case's content hash must match the job's (a
+// stale or foreign job is refused the same way); the solve is the in-process one (runFineJob,
+// runBandJob), with progress on the job's reply stream; the result is written atomically into the
+// data folder and only then is job_done sent and the entry acknowledged (XACK).
 //
 // Nothing lost: while a job runs, a watcher thread checks its cancel key (the solve stops within
 // one Newton iteration) and claims the entry again every third of the visibility timeout, so that

@@ -1,8 +1,8 @@
 // The prediction band in a planning session (issue 21, A.2 and A.3; docs/protocol.md,
 // "Prediction band"): `band` queues a band job of the current poses on the job queue the fine jobs
-// use (on the workers with `serve --redis`: jobs/BandWorkerJob, jobs/BandResultFile); when it is done the band's width
-// becomes the view's "band" colour map and `band_view` flips the drawn skin between the band's low and high envelopes;
-// `export_band` writes those surfaces.
+// use (on the workers with `serve --redis`: jobs/BandWorkerJob, jobs/BandResultFile); when it is
+// done the band's width becomes the view's "band" colour map and `band_view` flips the drawn skin
+// between the band's low and high envelopes; `export_band` writes those surfaces.
 #include <chrono>
 
 #include "eval/PredictionBandJson.hpp"
