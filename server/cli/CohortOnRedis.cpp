@@ -98,7 +98,9 @@ std::map<std::string, CohortPatientRuns> runCohortOnRedis(const server::RedisAdd
                                  "` (or use --spawn-workers)");
       continue;
     }
+    if (r.array[0].array.size() < 2) continue;
     for (const RedisValue& entry : r.array[0].array[1].array) {
+      if (entry.array.size() < 2) continue;  // not an entry: [id, [field, value, ...]]
       last = entry.array[0].string;
       json reply;
       for (size_t k = 0; k + 1 < entry.array[1].array.size(); k += 2)
