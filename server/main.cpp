@@ -240,7 +240,9 @@ int main(int argc, char** argv) {
 
   orthosim::cli::WorkerOptions workerOptions;
   workerOptions.builtinDir = ORTHOSIM_CASES_DIR;
-  auto* worker = app.add_subcommand("worker", "Run fine jobs from Redis Streams (serve --redis) on this machine");
+  auto* worker = app.add_subcommand(
+      "worker",
+      "Run fine, band and cohort jobs from Redis Streams (serve --redis, bench cohort --redis) on this machine");
   worker->add_option("--redis", workerOptions.redis, "redis://HOST:PORT, the same as the servers'")->required();
   worker->add_option("--data", workerOptions.dataDir,
                      "The servers' data folder (shared: cases, mesh cache, results; default: $ORTHOSIM_DATA, else "

@@ -130,6 +130,19 @@ void BenchCommands::addCohort() {
       ->check(CLI::Range(0, all));
   cohort_->add_option("--data", o.dataDir,
                       "Folder for the cohort's cases and tissue cache (kept; default: a temporary one)");
+  cohort_->add_option("--redis", o.redis,
+                      "redis://HOST:PORT: the runs go to `orthosim worker` processes through Redis (they must "
+                      "share --data, where they leave their results)");
+  cohort_
+      ->add_option("--spawn-workers", o.spawnWorkers,
+                   "With --redis: rounds with this many local workers each (e.g. 1,2,4), started by the bench on "
+                   "this machine (processes standing in for machines); wall time and speed-up per round")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 64));
+  cohort_
+      ->add_option("--spawn-repeats", o.spawnRepeats,
+                   "With --spawn-workers: rounds per count, interleaved (1,2,4,1,2,4,...); median wall times")
+      ->check(CLI::Range(1, 20));
   addRepeats(cohort_, o.repeats, "Solves per run (medians reported)");
   addJson(cohort_, o.jsonPath);
 }

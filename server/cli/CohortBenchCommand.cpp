@@ -4,20 +4,26 @@
 // 3 mm, and the lips' and soft chin's distance to the reference, issue 18), a speed-versus-error
 // plot over mesh resolutions and solver tolerances, and the soft-to-hard movement ratios at the
 // landmarks beside the published bands (engine/eval/Plausibility). The runs, measurements, ratios
-// and their JSON are engine/eval's; this file prints and collects them.
+// and their JSON are engine/eval's; this file prints and collects them. With --redis the runs are
+// jobs for `orthosim worker` processes (cli/CohortOnRedis), optionally started here round by round
+// (--spawn-workers 1,2,4) to time the speed-up.
 #include <unistd.h>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <thread>
 #include <utility>
 
 #include "cli/BenchContext.hpp"
+#include "cli/CohortOnRedis.hpp"
 #include "cli/Commands.hpp"
 #include "eval/Cohort.hpp"
 #include "eval/CohortJson.hpp"
@@ -25,6 +31,7 @@
 #include "eval/PlanRatios.hpp"
 #include "eval/RealFace.hpp"
 #include "eval/Statistics.hpp"
+#include "jobs/JobMessage.hpp"
 #include "render/ImageFile.hpp"
 #include "render/ScatterPlot.hpp"
 
@@ -42,6 +49,90 @@ std::string mm(double d) {
   else
     std::snprintf(s, sizeof s, "%6s", "n/a");
   return s;
+}
+
+// The runs on Redis workers: one round on the running workers, or with --spawn-workers one round
+// per count with that many local workers, each on a fresh data folder (its own tissue cache, so
+// every round meshes and solves the same), timed. The first round's runs fill `remote`.
+json runRounds(const CohortBenchOptions& opt, const std::vector<CohortPatient>& cohort, const fs::path& data,
+               std::map<std::string, CohortPatientRuns>& remote) {
+  const server::RedisAddress address = server::parseRedisUrl(opt.redis);
+  if (opt.spawnWorkers.empty() && opt.dataDir.empty())
+    throw std::invalid_argument(
+        "--redis without --spawn-workers needs --data: the data folder the workers share, where they leave results");
+  std::map<std::string, CaseSpec> specs;
+  for (const CohortPatient& p : cohort) {
+    CaseSpec spec = loadCaseFile(writeCohortCase(p, (data / p.id).string()));
+    if (opt.noContact) spec.contacts.clear();
+    specs[p.id] = spec;
+  }
+  CohortRedisPlan plan;
+  plan.reference = {"reference", opt.referenceTriangles, opt.referenceToleranceScale, kCohortReferenceIterations};
+  plan.coarse = {"coarse", opt.coarseTriangles, 1.0};
+  plan.fine = {"fine", opt.fineTriangles, 1.0};
+  plan.repeats = opt.repeats;
+  plan.contact = !opt.noContact;
+  plan.referenceFallback = opt.referenceToleranceScale != 1.0;
+  const std::vector<int> counts = opt.spawnWorkers.empty() ? std::vector<int>{0} : opt.spawnWorkers;
+  std::printf("on Redis at %s: %zu patients x 3 runs as cohort jobs; %s\n", address.text.c_str(), cohort.size(),
+              opt.spawnWorkers.empty()
+                  ? "solved by the workers already running (sharing --data)"
+                  : "rounds with local `orthosim worker` processes started by the bench, each on a fresh data folder "
+                    "(meshing included); the processes stand in for worker machines, but share this machine's cores");
+  // Each count once per repeat, interleaved (1, 2, 4, 1, 2, 4, ...), so that the other load of a
+  // shared machine falls on every count alike; the speed-up is of the medians.
+  const int repeats = opt.spawnWorkers.empty() ? 1 : std::max(1, opt.spawnRepeats);
+  json rounds = json::array();
+  std::map<int, std::vector<double>> walls;
+  int round = 0;
+  for (int rep = 0; rep < repeats; ++rep)
+    for (const int workers : counts) {
+      ++round;
+      const fs::path dir =
+          workers > 0 ? data / ("round-" + std::to_string(round) + "-" + std::to_string(workers) + "-workers") : data;
+      if (workers > 0) fs::remove_all(dir);
+      const std::string loadBefore = loadAverage();
+      const auto t0 = std::chrono::steady_clock::now();
+      std::map<std::string, CohortPatientRuns> runs;
+      {
+        std::optional<LocalWorkers> local;
+        if (workers > 0) local.emplace(opt.redis, dir, workers);
+        runs = runCohortOnRedis(address, cohort, specs, plan, dir);
+      }
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      walls[workers].push_back(wall);
+      const std::string loadAfter = loadAverage();
+      if (workers > 0)
+        std::printf("round %d: %d worker%s: wall %.1f s, load average %s before, %s after\n", round, workers,
+                    workers == 1 ? "" : "s", wall, loadBefore.c_str(), loadAfter.c_str());
+      std::fflush(stdout);
+      rounds.push_back({{"workers", workers > 0 ? json(workers) : json("running")},
+                        {"wall_s", wall},
+                        {"load_average_before", loadBefore},
+                        {"load_average_after", loadAfter}});
+      if (round == 1) remote = std::move(runs);
+      if (workers > 0) fs::remove_all(dir / "cache");  // tissue meshes: rebuilt by every round
+    }
+  json speedUp = json::array();
+  if (!opt.spawnWorkers.empty()) {
+    const double base = median(walls[counts[0]]);
+    std::printf("\nspeed-up (median wall time of %d round%s per count, against %d worker%s):\n%8s %9s %9s\n", repeats,
+                repeats == 1 ? "" : "s", counts[0], counts[0] == 1 ? "" : "s", "workers", "wall_s", "speed-up");
+    for (const int workers : counts) {
+      if (speedUp.size() > 0 && speedUp.back()["workers"] == workers) continue;
+      const double m = median(walls[workers]);
+      std::printf("%8d %9.1f %8.2fx\n", workers, m, base / m);
+      speedUp.push_back({{"workers", workers}, {"median_wall_s", m}, {"speed_up", base / m}});
+    }
+    std::printf(
+        "local processes stand in for worker machines: on this machine's %u hardware threads they share the\n"
+        "cores (and whatever else runs here: see the load averages), so expect at most about %ux; on separate\n"
+        "machines each worker has its own.\n",
+        std::thread::hardware_concurrency(), std::thread::hardware_concurrency());
+  }
+  std::printf("the table's solve times are the first round's, measured on the workers\n\n");
+  std::fflush(stdout);
+  return {{"url", address.text}, {"spawned", !opt.spawnWorkers.empty()}, {"rounds", rounds}, {"speed_up", speedUp}};
 }
 
 }  // namespace
@@ -77,6 +168,11 @@ int runCohortBench(const CohortBenchOptions& opt) {
         opt.referenceTriangles, opt.referenceToleranceScale, 1e-4 * opt.referenceToleranceScale,
         1e-4 * opt.referenceToleranceScale, kCohortReferenceIterations, opt.coarseTriangles, opt.fineTriangles,
         opt.noContact ? "\nWITHOUT lips-teeth contact (--no-contact: a quick check, not the product's model)" : "");
+    // With --redis: every run on the workers first (round by round with --spawn-workers).
+    std::map<std::string, CohortPatientRuns> remote;
+    json redisJson = nullptr;
+    if (!opt.redis.empty() && n > 0) redisJson = runRounds(opt, cohort, data, remote);
+
     if (n > 0) {
       std::printf("%-4s %-10s %-22s", "id", "diagnosis", "procedure");
       for (const char* r : {"c", "f"}) {
@@ -113,20 +209,30 @@ int runCohortBench(const CohortBenchOptions& opt) {
       CohortRun ref, coarse, fine;
       std::string referenceNote;
       try {
-        try {
-          ref = solveCohortRun(
-              spec, {"reference", opt.referenceTriangles, opt.referenceToleranceScale, kCohortReferenceIterations}, 1,
-              cacheDir);
-        } catch (const std::exception& e) {
-          // Newton can stall with contact short of the tight tolerances: the same fine mesh at the
-          // default ones (step 1e-4 h, far below a millimetre) is still a discretisation reference.
-          if (opt.referenceToleranceScale == 1.0) throw;
-          referenceNote = std::string("reference at the default tolerances: the tight solve failed: ") + e.what();
-          ref =
-              solveCohortRun(spec, {"reference", opt.referenceTriangles, 1.0, kCohortReferenceIterations}, 1, cacheDir);
+        if (!opt.redis.empty()) {  // solved on the workers
+          const CohortPatientRuns& r = remote.at(p.id);
+          if (!r.error.empty()) throw std::runtime_error(r.error);
+          ref = r.reference;
+          coarse = r.coarse;
+          fine = r.fine;
+          referenceNote = r.referenceNote;
+        } else
+          try {
+            ref = solveCohortRun(
+                spec, {"reference", opt.referenceTriangles, opt.referenceToleranceScale, kCohortReferenceIterations}, 1,
+                cacheDir);
+          } catch (const std::exception& e) {
+            // Newton can stall with contact short of the tight tolerances: the same fine mesh at the
+            // default ones (step 1e-4 h, far below a millimetre) is still a discretisation reference.
+            if (opt.referenceToleranceScale == 1.0) throw;
+            referenceNote = std::string("reference at the default tolerances: the tight solve failed: ") + e.what();
+            ref = solveCohortRun(spec, {"reference", opt.referenceTriangles, 1.0, kCohortReferenceIterations}, 1,
+                                 cacheDir);
+          }
+        if (opt.redis.empty()) {
+          coarse = solveCohortRun(spec, {"coarse", opt.coarseTriangles, 1.0}, opt.repeats, cacheDir);
+          fine = solveCohortRun(spec, {"fine", opt.fineTriangles, 1.0}, opt.repeats, cacheDir);
         }
-        coarse = solveCohortRun(spec, {"coarse", opt.coarseTriangles, 1.0}, opt.repeats, cacheDir);
-        fine = solveCohortRun(spec, {"fine", opt.fineTriangles, 1.0}, opt.repeats, cacheDir);
         measureAgainst(coarse, ref);
         measureAgainst(fine, ref);
       } catch (const std::exception& e) {
@@ -313,7 +419,8 @@ int runCohortBench(const CohortBenchOptions& opt) {
         {"sweep", sweep},
         {"ratios_outside_band", outside},
         {"patients_not_measured", failed},
-        {"real_face_ratios", faceJson}};
+        {"real_face_ratios", faceJson},
+        {"redis", redisJson}};
     if (!opt.imagePath.empty() && !plot.points.empty()) {
       render::writeImage(render::scatterPlot(plot), opt.imagePath);
       std::printf("speed-versus-error plot written to %s\n", opt.imagePath.c_str());

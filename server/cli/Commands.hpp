@@ -100,6 +100,11 @@ struct CohortBenchOptions {
   std::string facePath;                   // the ArtiSynth face folder: its ratios too; empty: not measured
   std::string jsonPath, imagePath;
   std::string dataDir;  // cohort cases and tissue cache (kept); empty: a temporary folder
+  // The runs as jobs on Redis (cli/CohortOnRedis), solved by `orthosim worker` processes that share
+  // dataDir; with spawnWorkers, by that many local workers per round (e.g. 1, 2, 4), timed.
+  std::string redis;
+  std::vector<int> spawnWorkers;
+  int spawnRepeats = 1;  // rounds per count, interleaved; medians reported
 };
 // `orthosim bench cohort`: the paper's Table 4 on the synthetic cohort, the speed-versus-error
 // plot, the soft-to-hard movement ratios. 0 when every patient is measured, 1 on bad input, 2 when
@@ -213,7 +218,7 @@ struct WorkerOptions {
   double visibilitySeconds = 60;  // a job whose worker stops claiming it this long goes to another
   std::string name;               // consumer name; empty: <host>-<pid>
 };
-// Runs fine jobs from Redis until SIGINT or SIGTERM (0); 1 when it cannot start (bad address,
+// Runs fine, band and cohort jobs from Redis until SIGINT or SIGTERM (0); 1 when it cannot start (bad address,
 // Redis unreachable, data folder not writable), with the reason on stderr.
 int runWorker(const WorkerOptions& options);
 

@@ -1,4 +1,4 @@
-// `orthosim worker`: fine jobs from Redis Streams on this machine (jobs/RedisWorker.hpp).
+// `orthosim worker`: fine, band and cohort jobs from Redis Streams on this machine (jobs/RedisWorker.hpp).
 #include <pthread.h>
 
 #include <csignal>

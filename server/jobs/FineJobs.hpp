@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cases/CaseLibrary.hpp"
+#include "jobs/BandJobMessage.hpp"
 #include "session/FineJob.hpp"
 #include "session/JobQueue.hpp"
 
@@ -30,11 +31,19 @@ struct FineJobRequest {
   // What the session needs to publish the outcome (its poses), handed back when another session
   // takes the job over (resume); kept with the job, never read by the queue.
   nlohmann::json context = nlohmann::json::object();
+  // Another kind of job on the same queue (RedisFineJobs only: `serve --redis`): "band", at
+  // `resolution`, with its options (jobs/BandJobMessage).
+  std::string kind = "fine";
+  Resolution resolution = Resolution::Fine;
+  std::optional<BandJobSpec> band;
 };
 
 struct FineJobCallbacks {
   JobReport report;                                    // job_progress, job_cancelled, job_failed
   std::function<void(long long job, FineSolve)> done;  // the converged solve
+  // Set for a job of another kind than "fine": called instead of `done` with the worker's job_done
+  // message (its result file, relative to the data folder, in "result"), off the relay thread.
+  std::function<void(long long job, nlohmann::json reply)> doneReply;
 };
 
 // A job taken over by a new session (resume): where it stands.

@@ -84,15 +84,17 @@ std::string encodeJobMessage(const JobMessage& job) {
   for (const auto& [name, m] : job.plan)
     plan[name] = {
         {"translation_mm", vec(m.translation)}, {"rotation_rad", vec(m.rotation)}, {"center_mm", vec(m.center)}};
-  return json{{"format", kJobFormat},
-              {"job", job.job},
-              {"kind", job.kind},
-              {"case", job.caseId},
-              {"case_hash", job.caseHash},
-              {"resolution", resolutionName(job.resolution)},
-              {"reply_stream", job.replyStream},
-              {"plan", plan}}
-      .dump();
+  json j{{"format", kJobFormat},
+         {"job", job.job},
+         {"kind", job.kind},
+         {"case", job.caseId},
+         {"case_hash", job.caseHash},
+         {"resolution", resolutionName(job.resolution)},
+         {"reply_stream", job.replyStream},
+         {"plan", plan}};
+  if (job.band) j["band"] = bandJobSpecJson(*job.band);
+  if (job.cohort) j["cohort"] = cohortJobSpecJson(*job.cohort);
+  return j.dump();
 }
 
 JobMessage decodeJobMessage(const std::string& text) {
@@ -107,7 +109,8 @@ JobMessage decodeJobMessage(const std::string& text) {
   if (format != kJobFormat)
     throw BadJobMessage("/format: '" + format + "' is not " + kJobFormat + " (a job of another deployment or version)");
   for (const auto& [key, value] : j.items()) {
-    static const char* known[] = {"format", "job", "kind", "case", "case_hash", "resolution", "reply_stream", "plan"};
+    static const char* known[] = {"format",     "job",          "kind", "case", "case_hash",
+                                  "resolution", "reply_stream", "plan", "band", "cohort"};
     if (std::find(std::begin(known), std::end(known), key) == std::end(known))
       throw BadJobMessage("/" + key + ": unknown field");
   }
@@ -115,7 +118,16 @@ JobMessage decodeJobMessage(const std::string& text) {
   m.job = readString(j, "job");
   if (!isJobName(m.job)) throw BadJobMessage("/job: '" + m.job + "' is not a job name (letters, digits, - and _)");
   m.kind = readString(j, "kind");
-  if (m.kind != "fine") throw BadJobMessage("/kind: '" + m.kind + "' is not a job kind this worker runs (fine)");
+  if (m.kind != "fine" && m.kind != "band" && m.kind != "cohort")
+    throw BadJobMessage("/kind: '" + m.kind + "' is not a job kind this worker runs (fine, band, cohort)");
+  if (j.contains("band") != (m.kind == "band"))
+    throw BadJobMessage(m.kind == "band" ? "/band: required field is missing"
+                                         : "/band: only a band job has band options");
+  if (j.contains("cohort") != (m.kind == "cohort"))
+    throw BadJobMessage(m.kind == "cohort" ? "/cohort: required field is missing"
+                                           : "/cohort: only a cohort job has cohort options");
+  if (m.kind == "band") m.band = readBandJobSpec(j["band"], "/band");
+  if (m.kind == "cohort") m.cohort = readCohortJobSpec(j["cohort"], "/cohort");
   m.caseId = readString(j, "case");
   if (!isIdentifier(m.caseId)) throw BadJobMessage("/case: '" + m.caseId + "' is not a case identifier");
   m.caseHash = readString(j, "case_hash");
@@ -150,6 +162,8 @@ JobMessage decodeJobMessage(const std::string& text) {
     f.center = readVec(motion["center_mm"], where + "/center_mm");
     m.plan[name] = f;
   }
+  if (m.kind == "cohort" && !m.plan.empty())
+    throw BadJobMessage("/plan: a cohort job's plan is its patient's (must be empty)");
   return m;
 }
 

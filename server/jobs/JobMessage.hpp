@@ -6,15 +6,22 @@
 //    "case_hash": "<hex>", "resolution": "fine", "reply_stream": "orthosim:replies:<server id>",
 //    "plan": {"maxilla": {"translation_mm": [..3], "rotation_rad": [..3], "center_mm": [..3]}, ...}}
 //
+// A band job (kind "band") has "band": {..} besides (jobs/BandJobMessage); a cohort job (kind
+// "cohort", `bench cohort --redis`) has "cohort": {..} (jobs/CohortJobMessage), its "case" is the
+// patient's id and its plan is empty. Each kind has exactly its own fields.
+//
 // Numbers travel as JSON doubles printed to round-trip exactly, so a worker solves the very
 // plan the server would have.
 #include <Eigen/Core>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "jobs/BandJobMessage.hpp"
+#include "jobs/CohortJobMessage.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/Scene.hpp"
 
@@ -29,13 +36,15 @@ class BadJobMessage : public std::invalid_argument {
 };
 
 struct JobMessage {
-  std::string job;  // unique over servers: "<server id>-<n>"
-  std::string kind = "fine";
+  std::string job;            // unique over servers: "<server id>-<n>"
+  std::string kind = "fine";  // "fine", "band", "cohort"
   std::string caseId;
   std::string caseHash;  // caseContentHash() of the case the server planned on
   Resolution resolution = Resolution::Fine;
   std::string replyStream;  // where progress and the outcome go
   std::map<std::string, FragmentMotion> plan;
+  std::optional<BandJobSpec> band;      // kind "band" only
+  std::optional<CohortJobSpec> cohort;  // kind "cohort" only
 };
 
 std::string encodeJobMessage(const JobMessage& job);

@@ -84,9 +84,13 @@ std::optional<SubmittedJob> RedisFineJobs::submit(FineJobRequest request, FineJo
   }
   m.replyStream = replyStream_;
   m.plan = request.plan;
+  m.kind = request.kind;
+  m.resolution = request.resolution;
+  m.band = request.band;
   Job job;
   job.owner = request.owner;
   job.caseId = request.caseId;
+  job.kind = request.kind;
   job.context = std::move(request.context);
   job.callbacks = std::make_shared<FineJobCallbacks>(std::move(callbacks));
   int position = 0;
@@ -105,7 +109,8 @@ std::optional<SubmittedJob> RedisFineJobs::submit(FineJobRequest request, FineJo
       const std::lock_guard<std::mutex> lock(mutex_);
       if (auto it = jobs_.find(job.id); it != jobs_.end()) it->second.entry = job.entry;
     }
-    if (durable_) saveJobRecord(redis, serverId_, {job.name, job.owner, job.caseId, job.entry, job.context});
+    if (durable_ && job.kind == "fine")
+      saveJobRecord(redis, serverId_, {job.name, job.owner, job.caseId, job.entry, job.context});
     // Entries not yet handed to a worker ("lag", Redis 7), this one included.
     const RedisValue groups = redis.command({"XINFO", "GROUPS", kJobStream});
     for (const RedisValue& g : groups.array)
@@ -192,12 +197,25 @@ void RedisFineJobs::cancelOwner(const std::string& owner) {
 void RedisFineJobs::releaseOwner(const std::string& owner) {
   if (!durable_) return cancelOwner(owner);
   const auto now = std::chrono::steady_clock::now();
-  const std::lock_guard<std::mutex> lock(mutex_);
-  for (auto& [id, j] : jobs_)
-    if (j.owner == owner && !j.orphanSince) {
-      j.callbacks.reset();
-      j.orphanSince = now;
+  std::vector<Job> gone;  // other kinds (bands) end with their session, as in process
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (auto it = jobs_.begin(); it != jobs_.end();) {
+      Job& j = it->second;
+      if (j.owner == owner && j.kind != "fine") {
+        gone.push_back(std::move(j));
+        it = jobs_.erase(it);
+        continue;
+      }
+      if (j.owner == owner && !j.orphanSince) {
+        j.callbacks.reset();
+        j.orphanSince = now;
+      }
+      ++it;
     }
+  }
+  const std::lock_guard<std::mutex> lock(commandMutex_);
+  for (const Job& j : gone) setCancel(j);
 }
 
 void RedisFineJobs::resume(const std::string& former, const std::string& owner, const std::string& caseId,
@@ -268,7 +286,14 @@ void RedisFineJobs::shutdown() {
     jobs_.clear();
   }
   const std::lock_guard<std::mutex> lock(commandMutex_);
-  if (durable_) {  // the jobs, their records and replies stay for this replica's next start
+  if (durable_) {  // fine jobs, their records and replies stay for this replica's next start
+    for (auto it = gone.begin(); it != gone.end();)
+      if (it->kind != "fine") {
+        setCancel(*it);
+        it = gone.erase(it);
+      } else {
+        ++it;
+      }
     if (!gone.empty())
       std::cerr << "orthosim serve: " << gone.size() << " fine job(s) stay on Redis for the next start of replica "
                 << serverId_ << "\n";
@@ -421,7 +446,14 @@ void RedisFineJobs::handleReply(const std::string& text) {
 
 void RedisFineJobs::deliver(Job job, json reply) {
   forget(job);
-  if (reply.value("type", "") == "job_done") {
+  const bool done = reply.value("type", "") == "job_done";
+  if (done && job.callbacks->doneReply) {  // another kind: its own result handler
+    boost::asio::post(finishing_, [job = std::move(job), reply = std::move(reply)]() mutable {
+      job.callbacks->doneReply(job.id, std::move(reply));
+    });
+    return;
+  }
+  if (done) {
     boost::asio::post(finishing_, [this, job = std::move(job), reply = std::move(reply)]() mutable {
       finishDone(std::move(job), std::move(reply));
     });

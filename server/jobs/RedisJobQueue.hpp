@@ -64,7 +64,8 @@ class RedisFineJobs : public FineJobs {
     std::string name;  // "<server id>-<id>" on the stream
     std::string owner;
     std::string caseId;
-    std::string entry;  // stream entry id
+    std::string kind = "fine";  // only fine jobs outlive their session (band jobs are cancelled)
+    std::string entry;          // stream entry id
     bool started = false;
     nlohmann::json context;
     std::shared_ptr<FineJobCallbacks> callbacks;                       // null while no session listens

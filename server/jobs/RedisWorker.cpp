@@ -7,6 +7,8 @@
 #include <thread>
 
 #include "cases/PatientImport.hpp"
+#include "jobs/BandWorkerJob.hpp"
+#include "jobs/CohortWorkerJob.hpp"
 #include "jobs/JobStream.hpp"
 #include "session/FineJob.hpp"
 
@@ -134,6 +136,21 @@ void RedisWorker::checkCase(const JobMessage& job) {
   builtHash_[job.caseId] = hash;
 }
 
+std::optional<json> RedisWorker::runFine(const JobMessage& job, const std::atomic<bool>& cancel,
+                                         const JobReport& report) {
+  std::optional<FineSolve> solved = runFineJob(0, cases_, job.caseId, job.plan, cancel, report);
+  if (!solved) return std::nullopt;
+  try {
+    writeResultNodes(options_.dataDir / resultFileName(job.job), solved->x);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("its result cannot be written: ") + e.what());
+  }
+  return json{{"type", "job_done"},
+              {"figures", solved->figures},
+              {"result", resultFileName(job.job)},
+              {"nodes", solved->x.cols()}};
+}
+
 void RedisWorker::handle(RedisConnection& redis, const std::string& consumer, const RedisValue& entry,
                          const std::atomic<bool>& stop) {
   if (entry.array.empty()) return;
@@ -171,12 +188,12 @@ void RedisWorker::handle(RedisConnection& redis, const std::string& consumer, co
     return;
   }
   try {
-    checkCase(job);
+    if (job.kind != "cohort") checkCase(job);  // a cohort job's case is written by runCohortOnWorker
   } catch (const std::exception& e) {
     refuse(redis, entryId, job.replyStream, job.job, e.what());
     return;
   }
-  say("job " + job.job + ": case " + job.caseId + " on " + consumer);
+  say(job.kind + " job " + job.job + ": case " + job.caseId + " on " + consumer);
 
   std::atomic<bool> cancel{false}, abandoned{false}, finished{false}, replyLost{false};
   // Cancel key and keeping the entry: on its own connection, so the solve is never waited on.
@@ -211,10 +228,15 @@ void RedisWorker::handle(RedisConnection& redis, const std::string& consumer, co
       cancel = true;  // nobody hears about it: stop, and leave the entry for a worker that can answer
     }
   };
-  std::optional<FineSolve> solved;
+  std::optional<json> done;  // the job_done message, its result written
   std::string failure;
   try {
-    solved = runFineJob(0, cases_, job.caseId, job.plan, cancel, report);
+    if (job.kind == "band")
+      done = runBandOnWorker(job, cases_, options_.dataDir, cancel, report);
+    else if (job.kind == "cohort")
+      done = runCohortOnWorker(job, options_.dataDir, consumer);
+    else
+      done = runFine(job, cancel, report);
   } catch (const std::exception& e) {
     failure = e.what();
   }
@@ -227,22 +249,14 @@ void RedisWorker::handle(RedisConnection& redis, const std::string& consumer, co
   if (replyLost) throw RedisUnavailable("lost Redis at " + options_.redis.text + " during job " + job.job);
   if (!failure.empty()) {
     say("job " + job.job + " failed: " + failure);
-    report({{"type", "job_failed"}, {"message", "the fine job failed: " + failure}});
-  } else if (!solved && cancel) {
+    json failed = {{"type", "job_failed"}, {"message", "the " + job.kind + " job failed: " + failure}};
+    if (job.kind != "fine") failed["kind"] = job.kind;
+    report(failed);
+  } else if (!done && cancel) {
     say("job " + job.job + " cancelled");
-  } else if (solved) {
-    try {
-      writeResultNodes(options_.dataDir / resultFileName(job.job), solved->x);
-      report({{"type", "job_done"},
-              {"figures", solved->figures},
-              {"result", resultFileName(job.job)},
-              {"nodes", solved->x.cols()}});
-      say("job " + job.job + " done");
-    } catch (const std::exception& e) {
-      say("job " + job.job + ": " + e.what());
-      report(
-          {{"type", "job_failed"}, {"message", std::string("the fine job's result cannot be written: ") + e.what()}});
-    }
+  } else if (done) {
+    report(*done);
+    say("job " + job.job + " done");
   }
   if (replyLost) throw RedisUnavailable("lost Redis at " + options_.redis.text + " during job " + job.job);
   acknowledge(redis, entryId);  // only now: the result is on disk and the server told

@@ -1,10 +1,11 @@
 #pragma once
-// `orthosim worker`: runs fine jobs from the Redis stream kJobStream as a member of the consumer
-// group kWorkerGroup, on cases read from the shared data folder (docs/deployment.md "Past one
-// machine"). Per job: the message is checked (a malformed or foreign one is logged, acknowledged
-// and, when it names where to, answered with job_failed, never run); the case's content hash must
-// match the job's (a stale or foreign job is refused the same way); the solve is runFineJob's,
-// with progress on the job's reply stream; the converged nodes are written atomically into the
+// `orthosim worker`: runs jobs from the Redis stream kJobStream as a member of the consumer group
+// kWorkerGroup, on cases read from the shared data folder (docs/deployment.md "Past one machine"):
+// fine jobs here, band jobs (jobs/BandWorkerJob) and cohort jobs (jobs/CohortWorkerJob). Per job:
+// the message is checked (a malformed or foreign one is logged, acknowledged and, when it names
+// where to, answered with job_failed, never run); the case's content hash must match the job's (a
+// stale or foreign job is refused the same way); the solve is the in-process one (runFineJob,
+// runBandJob), with progress on the job's reply stream; the result is written atomically into the
 // data folder and only then is job_done sent and the entry acknowledged (XACK).
 //
 // Nothing lost: while a job runs, a watcher thread checks its cancel key (the solve stops within
@@ -16,12 +17,14 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cases/CaseLibrary.hpp"
 #include "jobs/JobMessage.hpp"
 #include "jobs/RedisConnection.hpp"
+#include "session/FineJob.hpp"
 
 namespace orthosim::server {
 
@@ -51,6 +54,10 @@ class RedisWorker {
   void refuse(RedisConnection& redis, const std::string& entryId, const std::string& replyStream,
               const std::string& job, const std::string& why);
   void acknowledge(RedisConnection& redis, const std::string& entryId);
+  // A fine job's solve, its nodes written: the job_done message; nullopt when cancelled or not
+  // converged (reported).
+  std::optional<nlohmann::json> runFine(const JobMessage& job, const std::atomic<bool>& cancel,
+                                        const JobReport& report);
   // The case checked against the job's hash; the library's model is rebuilt when the case changed.
   void checkCase(const JobMessage& job);
 

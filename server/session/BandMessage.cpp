@@ -1,10 +1,12 @@
 // The prediction band in a planning session (issue 21, A.2 and A.3; docs/protocol.md,
 // "Prediction band"): `band` queues a band job of the current poses on the job queue the fine jobs
-// use; when it is done the band's width becomes the view's "band" colour map and `band_view` flips
-// the drawn skin between the band's low and high envelopes; `export_band` writes those surfaces.
+// use (on the workers with `serve --redis`: jobs/BandWorkerJob, jobs/BandResultFile); when it is
+// done the band's width becomes the view's "band" colour map and `band_view` flips the drawn skin
+// between the band's low and high envelopes; `export_band` writes those surfaces.
 #include <chrono>
 
 #include "eval/PredictionBandJson.hpp"
+#include "jobs/BandResultFile.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "session/BandJob.hpp"
 #include "session/PlanningSession.hpp"
@@ -37,6 +39,10 @@ void PlanningSession::band(MessageReader& r, const json& id) {
     throw ProtocolError("bad_value", std::string("/range_scale: ") + e.what(), "/range_scale");
   }
   auto self = shared_from_this();
+  if (service_.redisJobs()) {  // `serve --redis`: on the workers, as the fine jobs
+    submitRedisBand(s, resolution, options, solves, id);
+    return;
+  }
   const std::optional<long long> job = service_.localJobs().submit(
       id_,
       [self, s, resolution, options](long long job, const std::atomic<bool>& cancel) {
@@ -56,6 +62,54 @@ void PlanningSession::band(MessageReader& r, const json& id) {
         id);
 }
 
+void PlanningSession::submitRedisBand(const PlanSnapshot& s, Resolution resolution, const BandOptions& options,
+                                      size_t solves, const json& id) {
+  auto self = shared_from_this();
+  FineJobCallbacks callbacks;
+  callbacks.report = [self](json message) {
+    message["kind"] = "band";
+    self->reply(std::move(message), nullptr);
+  };
+  const std::filesystem::path dataDir = service_.options().dataDir;
+  callbacks.doneReply = [self, s, resolution, dataDir](long long job, json reply) {
+    const std::filesystem::path file = dataDir / reply.value("result", std::string());
+    try {
+      BandOutcome outcome = readBandResult(file);
+      std::error_code ignored;
+      std::filesystem::remove(file, ignored);  // the session holds it now
+      self->publishBand(job, s.caseId, resolution, s.poses, std::move(outcome));
+    } catch (const std::exception& e) {
+      self->reply({{"type", "job_failed"},
+                   {"job", job},
+                   {"kind", "band"},
+                   {"message", std::string("the band job's result cannot be used: ") + e.what()}},
+                  nullptr);
+    }
+  };
+  FineJobRequest request;
+  request.owner = id_;
+  request.caseId = s.caseId;
+  request.plan = s.plan;
+  request.kind = "band";
+  request.resolution = resolution;
+  request.band = bandJobSpecOf(options);
+  std::optional<SubmittedJob> job;
+  try {
+    job = service_.fineJobs().submit(std::move(request), std::move(callbacks));
+  } catch (const JobsUnavailable& e) {
+    throw ProtocolError("jobs_unavailable", e.what());
+  }
+  if (!job) throw ProtocolError("busy", "the job queue is full; try again when a job has finished");
+  reply({{"type", "job_queued"},
+         {"job", job->job},
+         {"kind", "band"},
+         {"case", s.caseId},
+         {"resolution", resolutionName(resolution)},
+         {"solves", solves},
+         {"position", job->position}},
+        id);
+}
+
 void PlanningSession::runBand(long long job, const std::string& caseId, Resolution resolution,
                               const std::map<std::string, FragmentMotion>& plan, const json& poses,
                               const BandOptions& options, const std::atomic<bool>& cancel) {
@@ -64,43 +118,7 @@ void PlanningSession::runBand(long long job, const std::string& caseId, Resoluti
     std::optional<BandSolve> solved =
         runBandJob(job, service_.cases(), caseId, resolution, plan, options, cancel, report);
     if (!solved) return;
-    const PredictionBand& b = solved->band;
-    auto done = std::make_shared<BandResult>(BandResult{job, caseId, resolutionName(resolution), b.envelope});
-    std::shared_ptr<SessionView> view;
-    bool sameCase = false;
-    int viewVertices = 0;  // of the open case's display skin
-    try {
-      const PlanSnapshot open = planSnapshot();
-      sameCase = open.caseId == caseId;
-      viewVertices = open.coarse->tissue.skin.numVertices();
-    } catch (const ProtocolError&) {  // closed or another case opening: nothing to show it on
-    }
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      if (sameCase) {
-        band_ = done;
-        view = view_;
-      }
-    }
-    json message = {{"type", "band_done"},      {"job", job},
-                    {"case", caseId},           {"resolution", resolutionName(resolution)},
-                    {"poses", poses},           {"band", predictionBandJson(b)},
-                    {"time_s", solved->seconds}};
-    // The display skin is the case's full-resolution skin at both resolutions; the view draws it.
-    const bool shown = view && b.envelope.nominal.numVertices() == viewVertices;
-    if (shown) {
-      auto skins = std::make_shared<SessionView::BandSkins>();
-      skins->width = b.envelope.width();
-      skins->nominal = b.envelope.nominal.vertices;
-      skins->low = b.envelope.lowSurface().vertices;
-      skins->high = b.envelope.highSurface().vertices;
-      skins->fragments = b.nominal.fragments;
-      skins->shows = {{"band_job", job}};
-      view->postBand(std::move(skins));
-    }
-    message["view"] = shown;
-    reply(std::move(message), nullptr);
-    if (shown) requestFrame();
+    publishBand(job, caseId, resolution, poses, bandOutcome(solved->band, solved->seconds));
   } catch (const std::exception& e) {
     reply({{"type", "job_failed"},
            {"job", job},
@@ -108,6 +126,47 @@ void PlanningSession::runBand(long long job, const std::string& caseId, Resoluti
            {"message", std::string("the band job failed: ") + e.what()}},
           nullptr);
   }
+}
+
+// A finished band, from this machine's pool or a worker: band_done, and the view's band.
+void PlanningSession::publishBand(long long job, const std::string& caseId, Resolution resolution, const json& poses,
+                                  BandOutcome b) {
+  auto done = std::make_shared<BandResult>(BandResult{job, caseId, resolutionName(resolution), b.envelope});
+  std::shared_ptr<SessionView> view;
+  bool sameCase = false;
+  int viewVertices = 0;  // of the open case's display skin
+  try {
+    const PlanSnapshot open = planSnapshot();
+    sameCase = open.caseId == caseId;
+    viewVertices = open.coarse->tissue.skin.numVertices();
+  } catch (const ProtocolError&) {  // closed or another case opening: nothing to show it on
+  }
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (sameCase) {
+      band_ = done;
+      view = view_;
+    }
+  }
+  json message = {{"type", "band_done"}, {"job", job},
+                  {"case", caseId},      {"resolution", resolutionName(resolution)},
+                  {"poses", poses},      {"band", std::move(b.band)},
+                  {"time_s", b.seconds}};
+  // The display skin is the case's full-resolution skin at both resolutions; the view draws it.
+  const bool shown = view && b.envelope.nominal.numVertices() == viewVertices;
+  if (shown) {
+    auto skins = std::make_shared<SessionView::BandSkins>();
+    skins->width = b.envelope.width();
+    skins->nominal = b.envelope.nominal.vertices;
+    skins->low = b.envelope.lowSurface().vertices;
+    skins->high = b.envelope.highSurface().vertices;
+    skins->fragments = b.fragments;
+    skins->shows = {{"band_job", job}};
+    view->postBand(std::move(skins));
+  }
+  message["view"] = shown;
+  reply(std::move(message), nullptr);
+  if (shown) requestFrame();
 }
 
 void PlanningSession::bandView(MessageReader& r, const json& id) {

@@ -57,8 +57,10 @@ class PlanningService {
   boost::asio::thread_pool& renderPool() { return renderPool_; }
   // Fine jobs: on localJobs() or, with redisUrl, on the workers.
   FineJobs& fineJobs() { return *fineJobs_; }
-  // This machine's bounded pool: band jobs, and fine jobs without redisUrl.
+  // This machine's bounded pool: band and fine jobs without redisUrl.
   JobQueue& localJobs() { return localJobs_; }
+  // True with redisUrl: fine and band jobs go to the workers.
+  bool redisJobs() const { return redisJobs_; }
   PlanStore& plans() { return plans_; }
   PatientImporter& patients() { return patients_; }
   // Imports run here, one at a time, off the network threads (checking a patient's surfaces takes

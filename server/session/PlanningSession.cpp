@@ -552,10 +552,14 @@ void PlanningSession::confirm(MessageReader& r, const json& id) {
     poses = poses_;
     context = {{"poses", posesJson()}};
   }
+  FineJobRequest request;
+  request.owner = id_;
+  request.caseId = c->id;
+  request.plan = c->plan(poses);  // same case file as the coarse model: same frame and pivots
+  request.context = std::move(context);
   std::optional<SubmittedJob> job;
   try {
-    // Same case file as the coarse model: same frame and pivots.
-    job = service_.fineJobs().submit({id_, c->id, c->plan(poses), std::move(context)}, fineCallbacks(c, poses));
+    job = service_.fineJobs().submit(std::move(request), fineCallbacks(c, poses));
   } catch (const JobsUnavailable& e) {
     throw ProtocolError("jobs_unavailable", e.what());
   }

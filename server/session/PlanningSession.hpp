@@ -13,6 +13,7 @@
 #include <string>
 
 #include "eval/PredictionBand.hpp"
+#include "jobs/BandResultFile.hpp"
 #include "planning/FaceRequestJson.hpp"
 #include "session/AnatomicalPose.hpp"
 #include "session/FineJob.hpp"
@@ -71,6 +72,12 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
     nlohmann::json poses;
   };
   PlanSnapshot planSnapshot() const;
+  // A band job on the workers (`serve --redis`), and a finished band from either place
+  // (session/BandMessage.cpp): band_done and the view's band.
+  void submitRedisBand(const PlanSnapshot& s, Resolution resolution, const BandOptions& options, size_t solves,
+                       const nlohmann::json& id);
+  void publishBand(long long job, const std::string& caseId, Resolution resolution, const nlohmann::json& poses,
+                   BandOutcome outcome);
   std::string openCaseId() const;  // throws case_not_open as requireOpen does
   void describe(MessageReader& r, const nlohmann::json& id);
   void setPoses(MessageReader& r, const nlohmann::json& id);

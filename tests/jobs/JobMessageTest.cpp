@@ -73,7 +73,7 @@ TEST(JobMessage, MalformedAndForeignMessagesAreRefusedSayingWhere) {
   expectRefused(withField("format", "celery-task-2"), "/format");
   expectRefused(withField("format", nullptr), "/format: required");
   expectRefused(withField("job", "../../etc/passwd"), "/job");
-  expectRefused(withField("kind", "band"), "/kind");
+  expectRefused(withField("kind", "celery"), "/kind");
   expectRefused(withField("case", "Phantom 0!"), "/case");
   expectRefused(withField("case_hash", "xyz"), "/case_hash");
   expectRefused(withField("resolution", "ultra"), "/resolution");

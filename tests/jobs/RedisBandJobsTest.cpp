@@ -1,0 +1,282 @@
+// Band and cohort jobs through Redis Streams (issue 22; docs/deployment.md "Past one machine"),
+// each test with its own real redis-server on a free port: a band on a worker is the in-process
+// band; cancel reaches a band running on a worker; malformed band and cohort jobs are refused, not
+// run; `bench cohort --redis` gives the in-process figures.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "../server/ServerProcess.hpp"
+#include "../server/WsTestClient.hpp"
+#include "RedisTestServer.hpp"
+#include "TestWait.hpp"
+#include "jobs/JobMessage.hpp"
+#include "jobs/RedisConnection.hpp"
+
+namespace orthosim {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+fs::path logFile(const std::string& name) {
+  const fs::path dir = fs::path(test::testDataDir()).parent_path() / "redis-logs";
+  fs::create_directories(dir);
+  return dir / (name + ".log");
+}
+
+std::unique_ptr<test::ChildProcess> startWorker(const test::RedisTestServer& redis, const std::string& name) {
+  return std::make_unique<test::ChildProcess>(
+      std::vector<std::string>{ORTHOSIM_CLI, "worker", "--redis", redis.url(), "--data", test::testDataDir(),
+                               "--visibility-timeout", "5", "--name", name},
+      "worker ready", logFile(name).string());
+}
+
+void openPhantom(test::WsTestClient& ws) {
+  ws.request({{"type", "open"}, {"case", "phantom-0"}});
+  ws.waitFor("opened", 120s);
+  ws.request({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 5}}}}}, {"preview", false}});
+}
+
+// The one-at-a-time design only (8 solves at coarse resolution): the shortest band.
+const json kBand = {{"type", "band"}, {"resolution", "coarse"}, {"corners", false}};
+
+json jobMessage(test::WsTestClient& ws, long long job, const std::string& type, std::chrono::milliseconds timeout) {
+  return ws.waitFor([&](const json& m) { return m.value("type", "") == type && m.value("job", -1LL) == job; }, timeout);
+}
+
+json bandOutcome(test::WsTestClient& ws, long long job) {
+  return ws.waitFor(
+      [&](const json& m) {
+        const std::string t = m.value("type", "");
+        return m.value("job", -1LL) == job && (t == "band_done" || t == "job_failed" || t == "job_cancelled");
+      },
+      300s);
+}
+
+long long pendingJobs(const test::RedisTestServer& redis) {
+  server::RedisConnection c(server::parseRedisUrl(redis.url()));
+  const server::RedisValue r = c.command({"XPENDING", server::kJobStream, server::kWorkerGroup});
+  return r.array.empty() ? 0 : r.array[0].integer;
+}
+
+void expectNear(const json& a, const json& b, const std::string& at) {
+  ASSERT_TRUE(a.is_number() && b.is_number()) << at << ": " << a.dump() << " vs " << b.dump();
+  EXPECT_NEAR(a.get<double>(), b.get<double>(), 0.01) << at;
+}
+
+TEST(RedisBandJobs, ABandOnAWorkerIsTheInProcessBand) {
+  REQUIRE_REDIS_SERVER();
+  json local;
+  {
+    test::ServerProcess server;
+    test::WsTestClient ws(server.port());
+    openPhantom(ws);
+    const long long job = ws.request(kBand)["job"];
+    local = bandOutcome(ws, job);
+    ASSERT_EQ(local["type"], "band_done") << local.dump();
+  }
+  test::RedisTestServer redis;
+  auto worker = startWorker(redis, "band-w1");
+  test::ServerProcess server({"--redis", redis.url()});
+  test::WsTestClient ws(server.port());
+  openPhantom(ws);
+  const json queued = ws.request(kBand);
+  ASSERT_EQ(queued["type"], "job_queued") << queued.dump();
+  EXPECT_EQ(queued["kind"], "band");
+  EXPECT_EQ(queued["solves"], 8);
+  const long long job = queued["job"];
+  const json done = bandOutcome(ws, job);
+  ASSERT_EQ(done["type"], "band_done") << done.dump();
+  EXPECT_NE(test::readFile(logFile("band-w1")).find("band job"), std::string::npos) << "it ran on the worker";
+  // Progress from the worker, as in process: each solve, kind band.
+  int lastSolve = 0;
+  for (const json& m : ws.received())
+    if (m.value("type", "") == "job_progress" && m["job"] == job) {
+      EXPECT_EQ(m["kind"], "band") << m.dump();
+      if (m["phase"] == "solve") lastSolve = std::max(lastSolve, m["solve"].get<int>());
+    }
+  EXPECT_EQ(lastSolve, 8);
+  // The same band: landmark ranges and envelope widths within 0.01 mm, the same runs converged.
+  const json& a = local["band"];
+  const json& b = done["band"];
+  EXPECT_EQ(a["converged"], b["converged"]);
+  EXPECT_EQ(b["converged"], 8);
+  EXPECT_EQ(a["failed"], b["failed"]);
+  ASSERT_EQ(a["landmarks"].size(), b["landmarks"].size());
+  int measured = 0;
+  for (size_t l = 0; l < a["landmarks"].size(); ++l) {
+    const json &la = a["landmarks"][l], &lb = b["landmarks"][l];
+    EXPECT_EQ(la["name"], lb["name"]);
+    EXPECT_EQ(la["measured"], lb["measured"]);
+    if (!la["measured"].get<bool>()) continue;
+    ++measured;
+    const std::string at = "/landmarks/" + la["name"].get<std::string>();
+    for (const char* end : {"low_mm", "high_mm"})
+      for (const char* axis : {"anterior", "superior", "right"})
+        expectNear(la[end][axis], lb[end][axis], at + "/" + end + "/" + axis);
+    expectNear(la["range_mm"], lb["range_mm"], at + "/range_mm");
+  }
+  EXPECT_GT(measured, 3);
+  for (const char* key : {"max_mm", "p95_mm", "share_over_0_5mm", "share_over_1mm"})
+    expectNear(a["width"][key], b["width"][key], std::string("/width/") + key);
+  EXPECT_EQ(a["width"]["vertices"], b["width"]["vertices"]);
+  EXPECT_TRUE(done["view"].get<bool>());
+  EXPECT_EQ(done["poses"]["maxilla"]["anterior_mm"], 5.0);
+  // The session holds the band: the view flips to its extremes, its surfaces export.
+  EXPECT_EQ(ws.request({{"type", "band_view"}, {"surface", "high"}})["type"], "band_view");
+  ws.waitFor([](const json& m) { return m["type"] == "frame" && m["shows"]["state"] == "band_high"; }, 60s);
+  const json exported = ws.request({{"type", "export_band"}, {"surface", "low"}, {"format", "ply"}});
+  EXPECT_EQ(exported["type"], "exported") << exported.dump();
+  EXPECT_EQ(exported["job"], job);
+  EXPECT_TRUE(test::waitUntil([&] { return pendingJobs(redis) == 0; }, 5s, 50ms)) << "acknowledged";
+  for (const auto& f : fs::directory_iterator(fs::path(test::testDataDir()) / "jobs"))
+    EXPECT_EQ(f.path().string().find(".band.json"), std::string::npos) << "left behind: " << f.path();
+}
+
+TEST(RedisBandJobs, CancelStopsABandRunningOnAWorker) {
+  REQUIRE_REDIS_SERVER();
+  test::RedisTestServer redis;
+  auto worker = startWorker(redis, "band-cancel-w1");
+  test::ServerProcess server({"--redis", redis.url()});
+  test::WsTestClient ws(server.port());
+  openPhantom(ws);
+  const long long job = ws.request(kBand)["job"];
+  ws.waitFor(
+      [&](const json& m) { return m.value("type", "") == "job_progress" && m["job"] == job && m["phase"] == "solve"; },
+      120s);  // solving on the worker
+  EXPECT_EQ(ws.request({{"type", "cancel"}, {"job", job}})["type"], "cancelling");
+  const json outcome = bandOutcome(ws, job);
+  ASSERT_EQ(outcome["type"], "job_cancelled") << outcome.dump();
+  EXPECT_EQ(outcome["kind"], "band");
+  EXPECT_EQ(outcome["phase"], "solve") << "it was running";
+  EXPECT_LT(outcome["solved"].get<int>(), 8) << "stopped before the end";
+  EXPECT_TRUE(test::waitUntil([&] { return pendingJobs(redis) == 0; }, 5s, 50ms)) << "acknowledged";
+  std::this_thread::sleep_for(500ms);
+  for (const json& m : ws.received()) EXPECT_NE(m.value("type", ""), "band_done") << m.dump();
+  // There is no band to show.
+  EXPECT_EQ(ws.request({{"type", "band_view"}, {"surface", "low"}})["error"], "no_band");
+}
+
+TEST(RedisBandJobs, MalformedBandAndCohortJobsAreRefusedNotRun) {
+  REQUIRE_REDIS_SERVER();
+  test::RedisTestServer redis;
+  auto worker = startWorker(redis, "band-refuse-w1");
+  server::RedisConnection c(server::parseRedisUrl(redis.url()));
+  const std::string replies = server::replyStreamName("feedfacefeedface");
+  server::JobMessage band;
+  band.job = "feedfacefeedface-1";
+  band.kind = "band";
+  band.caseId = "phantom-0";
+  band.caseHash = "0123456789abcdef";
+  band.resolution = Resolution::Coarse;
+  band.replyStream = replies;
+  band.band = server::BandJobSpec{};
+  json wide = json::parse(server::encodeJobMessage(band));
+  wide["band"]["range_scale"] = 50;
+  c.command({"XADD", server::kJobStream, "*", "job", wide.dump()});
+  server::JobMessage cohort;
+  cohort.job = "feedfacefeedface-2";
+  cohort.kind = "cohort";
+  cohort.caseId = "M4";
+  cohort.caseHash = "0123456789abcdef";
+  cohort.replyStream = replies;
+  cohort.cohort = server::CohortJobSpec{{"fine", 6000, 1.0, 0}, 1, true, false};
+  json noRepeats = json::parse(server::encodeJobMessage(cohort));
+  noRepeats["cohort"]["repeats"] = -2;
+  c.command({"XADD", server::kJobStream, "*", "job", noRepeats.dump()});
+  json untagged = json::parse(server::encodeJobMessage(band));  // band options on a fine job
+  untagged["job"] = "feedfacefeedface-3";
+  untagged["kind"] = "fine";
+  c.command({"XADD", server::kJobStream, "*", "job", untagged.dump()});
+  std::vector<json> answers;
+  ASSERT_TRUE(test::waitUntil(
+      [&] {
+        answers.clear();
+        for (const server::RedisValue& e : c.command({"XRANGE", replies, "-", "+"}).array)
+          answers.push_back(json::parse(e.array[1].array[1].string));
+        return answers.size() >= 3;
+      },
+      30s, 50ms));
+  ASSERT_EQ(answers.size(), 3u);
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"feedfacefeedface-1", "/band/range_scale: 50 is not in"},
+      {"feedfacefeedface-2", "/cohort/repeats: -2 is not an integer"},
+      {"feedfacefeedface-3", "/band: only a band job has band options"}};
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(answers[i]["type"], "job_failed");
+    EXPECT_EQ(answers[i]["job"], expected[i].first);
+    EXPECT_NE(answers[i]["message"].get<std::string>().find(expected[i].second), std::string::npos)
+        << answers[i].dump();
+  }
+  EXPECT_TRUE(test::waitUntil([&] { return pendingJobs(redis) == 0; }, 5s, 50ms)) << "all acknowledged";
+  EXPECT_EQ(c.command({"XLEN", server::kJobStream}).integer, 0) << "and removed";
+  const std::string log = test::readFile(logFile("band-refuse-w1"));
+  EXPECT_EQ(log.find(": case "), std::string::npos) << "nothing ran: " << log;
+}
+
+// `bench cohort` in process and through Redis with a worker the bench starts: the same per-patient
+// figures (one patient, small meshes, one solve each).
+TEST(RedisBandJobs, TheCohortOnWorkersGivesTheInProcessFigures) {
+  REQUIRE_REDIS_SERVER();
+  test::RedisTestServer redis;
+  const fs::path dir = fs::path(test::testDataDir()).parent_path() / "redis-cohort";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::vector<std::string> common = {"bench",
+                                           "cohort",
+                                           "--patient",
+                                           "M4",
+                                           "--coarse-triangles",
+                                           "300",
+                                           "--fine-triangles",
+                                           "600",
+                                           "--reference-triangles",
+                                           "1200",
+                                           "--repeats",
+                                           "1",
+                                           "--sweep-patients",
+                                           "0"};
+  const auto run = [&](const std::string& name, std::vector<std::string> extra) {
+    std::string cmd = ORTHOSIM_CLI;
+    for (const std::string& a : common) cmd += " " + a;
+    extra.insert(extra.end(), {"--data", (dir / name).string(), "--json", (dir / (name + ".json")).string()});
+    for (const std::string& a : extra) cmd += " " + a;
+    cmd += " > " + (dir / (name + ".out")).string() + " 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd << "\n" << test::readFile(dir / (name + ".out"));
+    std::ifstream in(dir / (name + ".json"));
+    return json::parse(in);
+  };
+  const json local = run("local", {});
+  const json remote = run("remote", {"--redis", redis.url(), "--spawn-workers", "1"});
+  const std::string out = test::readFile(dir / "remote.out");
+  EXPECT_NE(out.find("M4 fine done on a worker"), std::string::npos) << out;
+  EXPECT_NE(out.find("stand in for worker machines"), std::string::npos) << out;
+  ASSERT_EQ(remote["redis"]["rounds"].size(), 1u) << remote["redis"].dump();
+  ASSERT_EQ(local["patients"].size(), 1u);
+  ASSERT_EQ(remote["patients"].size(), 1u);
+  const json &a = local["patients"][0], &b = remote["patients"][0];
+  ASSERT_FALSE(b.contains("error")) << b.dump();
+  for (const char* run : {"reference", "coarse", "fine"}) {
+    EXPECT_EQ(a[run]["tets"], b[run]["tets"]) << run;
+    EXPECT_EQ(a[run]["skin_triangles"], b[run]["skin_triangles"]) << run;
+    EXPECT_EQ(a[run]["newton_iterations"], b[run]["newton_iterations"]) << run;
+  }
+  for (const char* run : {"coarse", "fine"}) {
+    for (size_t k = 0; k < a[run]["face_region"]["share_within"].size(); ++k)
+      expectNear(a[run]["face_region"]["share_within"][k], b[run]["face_region"]["share_within"][k],
+                 std::string(run) + "/share_within");
+    ASSERT_FALSE(a[run]["landmark_error_mm"].empty());
+    for (const auto& [name, value] : a[run]["landmark_error_mm"].items())
+      expectNear(value, b[run]["landmark_error_mm"][name], std::string(run) + "/landmark_error_mm/" + name);
+  }
+  ASSERT_EQ(a["ratios_fine"].size(), b["ratios_fine"].size());
+}
+
+}  // namespace
+}  // namespace orthosim
