@@ -419,8 +419,8 @@ int runCohortBench(const CohortBenchOptions& opt) {
         {"sweep", sweep},
         {"ratios_outside_band", outside},
         {"patients_not_measured", failed},
-        {"real_face_ratios", faceJson},
-        {"redis", redisJson}};
+        {"real_face_ratios", faceJson}};
+    if (!redisJson.is_null()) out["redis"] = redisJson;  // the rounds on the workers (--redis)
     if (!opt.imagePath.empty() && !plot.points.empty()) {
       render::writeImage(render::scatterPlot(plot), opt.imagePath);
       std::printf("speed-versus-error plot written to %s\n", opt.imagePath.c_str());

@@ -33,7 +33,7 @@ class BandCommand : public ::testing::Test {
 };
 
 TEST_F(BandCommand, BadInputIsNamedAndExitsWithOne) {
-  const std::string out = " --out " + (dir() / "bad").string() + " --cache " + (dir() / "cache").string();
+  const std::string out = " --out " + (dir() / "bad").string() + " --cache " ORTHOSIM_TEST_CACHE_DIR;
   const test::CliRun resolution = test::runCli("band " + casePath() + out + " --resolution medium");
   EXPECT_EQ(resolution.status, 1);
   EXPECT_NE(resolution.out.find("--resolution"), std::string::npos) << resolution.out;
@@ -49,8 +49,8 @@ TEST_F(BandCommand, BadInputIsNamedAndExitsWithOne) {
 
 TEST_F(BandCommand, WritesTheEnvelopesAndTheRanges) {
   const fs::path out = dir() / "band";
-  const test::CliRun run = test::runCli("band " + casePath() + " --out " + out.string() + " --cache " +
-                                        (dir() / "cache").string() + " --no-corners --range-scale 0.5");
+  const test::CliRun run = test::runCli("band " + casePath() + " --out " + out.string() +
+                                        " --cache " ORTHOSIM_TEST_CACHE_DIR " --no-corners --range-scale 0.5");
   ASSERT_EQ(run.status, 0) << run.out;
   EXPECT_NE(run.out.find("8 solves (8 converged)"), std::string::npos) << run.out;
   for (const char* f : {"envelope_low.ply", "envelope_high.ply", "nominal.ply", "band.json"})

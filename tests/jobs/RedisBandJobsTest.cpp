@@ -3,6 +3,7 @@
 // band; cancel reaches a band running on a worker; malformed band and cohort jobs are refused, not
 // run; `bench cohort --redis` gives the in-process figures.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -13,9 +14,11 @@
 
 #include "../server/ServerProcess.hpp"
 #include "../server/WsTestClient.hpp"
+#include "RedisJobsFixture.hpp"
 #include "RedisTestServer.hpp"
 #include "TestWait.hpp"
 #include "jobs/JobMessage.hpp"
+#include "jobs/JobRecords.hpp"
 #include "jobs/RedisConnection.hpp"
 
 namespace orthosim {
@@ -24,31 +27,19 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace std::chrono_literals;
 
-fs::path logFile(const std::string& name) {
-  const fs::path dir = fs::path(test::testDataDir()).parent_path() / "redis-logs";
-  fs::create_directories(dir);
-  return dir / (name + ".log");
-}
+fs::path logFile(const std::string& name) { return test::redisLogFile(name); }
 
 std::unique_ptr<test::ChildProcess> startWorker(const test::RedisTestServer& redis, const std::string& name) {
-  return std::make_unique<test::ChildProcess>(
-      std::vector<std::string>{ORTHOSIM_CLI, "worker", "--redis", redis.url(), "--data", test::testDataDir(),
-                               "--visibility-timeout", "5", "--name", name},
-      "worker ready", logFile(name).string());
+  return test::startRedisWorker(redis, name, "5");
 }
 
-void openPhantom(test::WsTestClient& ws) {
-  ws.request({{"type", "open"}, {"case", "phantom-0"}});
-  ws.waitFor("opened", 120s);
-  ws.request({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 5}}}}}, {"preview", false}});
-}
+void openPhantom(test::WsTestClient& ws) { test::openPhantomAdvanced(ws, 5); }
+
+using test::jobMessage;
+using test::pendingJobs;
 
 // The one-at-a-time design only (8 solves at coarse resolution): the shortest band.
 const json kBand = {{"type", "band"}, {"resolution", "coarse"}, {"corners", false}};
-
-json jobMessage(test::WsTestClient& ws, long long job, const std::string& type, std::chrono::milliseconds timeout) {
-  return ws.waitFor([&](const json& m) { return m.value("type", "") == type && m.value("job", -1LL) == job; }, timeout);
-}
 
 json bandOutcome(test::WsTestClient& ws, long long job) {
   return ws.waitFor(
@@ -57,12 +48,6 @@ json bandOutcome(test::WsTestClient& ws, long long job) {
         return m.value("job", -1LL) == job && (t == "band_done" || t == "job_failed" || t == "job_cancelled");
       },
       300s);
-}
-
-long long pendingJobs(const test::RedisTestServer& redis) {
-  server::RedisConnection c(server::parseRedisUrl(redis.url()));
-  const server::RedisValue r = c.command({"XPENDING", server::kJobStream, server::kWorkerGroup});
-  return r.array.empty() ? 0 : r.array[0].integer;
 }
 
 void expectNear(const json& a, const json& b, const std::string& at) {
@@ -161,6 +146,33 @@ TEST(RedisBandJobs, CancelStopsABandRunningOnAWorker) {
   for (const json& m : ws.received()) EXPECT_NE(m.value("type", ""), "band_done") << m.dump();
   // There is no band to show.
   EXPECT_EQ(ws.request({{"type", "band_view"}, {"surface", "low"}})["error"], "no_band");
+}
+
+// A fine job outlives its session for a page that resumes it; a band job ends with its session,
+// as on the server's own pool (only fine jobs are resumed).
+TEST(RedisBandJobs, ABandEndsWithItsSessionWhereAFineJobStays) {
+  REQUIRE_REDIS_SERVER();
+  test::RedisTestServer redis;  // no worker: both jobs wait on the stream
+  const std::string replica = "band-end-" + std::to_string(::getpid());
+  test::ServerProcess server({"--redis", redis.url(), "--replica", replica});
+  long long fine = 0;
+  {
+    test::WsTestClient ws(server.port());
+    openPhantom(ws);
+    fine = ws.request({{"type", "confirm"}})["job"];
+    EXPECT_EQ(ws.request(kBand)["type"], "job_queued");
+    ws.close();
+  }
+  server::RedisConnection c(server::parseRedisUrl(redis.url()));
+  EXPECT_TRUE(test::waitUntil(
+      [&] {
+        return c.command({"XLEN", server::kJobStream}).integer == 1;
+      },
+      10s, 50ms))
+      << "the band is taken off the stream";
+  const std::vector<server::JobRecord> records = server::jobRecords(c, replica);
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_EQ(records[0].job, replica + "-" + std::to_string(fine));
 }
 
 TEST(RedisBandJobs, MalformedBandAndCohortJobsAreRefusedNotRun) {

@@ -14,6 +14,7 @@
 
 #include "../server/ServerProcess.hpp"
 #include "../server/WsTestClient.hpp"
+#include "RedisJobsFixture.hpp"
 #include "RedisTestServer.hpp"
 #include "TestWait.hpp"
 #include "jobs/JobMessage.hpp"
@@ -27,29 +28,17 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace std::chrono_literals;
 
-fs::path logFile(const std::string& name) {
-  const fs::path dir = fs::path(test::testDataDir()).parent_path() / "redis-logs";
-  fs::create_directories(dir);
-  return dir / (name + ".log");
-}
+fs::path logFile(const std::string& name) { return test::redisLogFile(name); }
 
 std::unique_ptr<test::ChildProcess> startWorker(const test::RedisTestServer& redis, const std::string& name,
                                                 const std::string& visibility = "2") {
-  return std::make_unique<test::ChildProcess>(
-      std::vector<std::string>{ORTHOSIM_CLI, "worker", "--redis", redis.url(), "--data", test::testDataDir(),
-                               "--visibility-timeout", visibility, "--name", name},
-      "worker ready", logFile(name).string());
+  return test::startRedisWorker(redis, name, visibility);
 }
 
-void openPhantom(test::WsTestClient& ws) {
-  ws.request({{"type", "open"}, {"case", "phantom-0"}});
-  ws.waitFor("opened", 120s);
-  ws.request({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 4}}}}}, {"preview", false}});
-}
+void openPhantom(test::WsTestClient& ws) { test::openPhantomAdvanced(ws, 4); }
 
-json jobMessage(test::WsTestClient& ws, long long job, const std::string& type, std::chrono::milliseconds timeout) {
-  return ws.waitFor([&](const json& m) { return m.value("type", "") == type && m.value("job", -1LL) == job; }, timeout);
-}
+using test::jobMessage;
+using test::pendingJobs;
 
 // Every number within 0.01 (mm, or the same count), strings and flags equal; times are left out.
 void expectSameFigures(const json& a, const json& b, const std::string& at = "") {
@@ -82,12 +71,6 @@ const json& inProcessDone() {
     return jobMessage(ws, job, "job_done", 300s);
   }();
   return done;
-}
-
-long long pendingJobs(const test::RedisTestServer& redis) {
-  server::RedisConnection c(server::parseRedisUrl(redis.url()));
-  const server::RedisValue r = c.command({"XPENDING", server::kJobStream, server::kWorkerGroup});
-  return r.array.empty() ? 0 : r.array[0].integer;
 }
 
 int count(const test::WsTestClient& ws, const std::string& type, long long job) {

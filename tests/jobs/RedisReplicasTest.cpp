@@ -16,6 +16,7 @@
 #include "../server/HttpTestClient.hpp"
 #include "../server/ServerProcess.hpp"
 #include "../server/WsTestClient.hpp"
+#include "RedisJobsFixture.hpp"
 #include "RedisTestServer.hpp"
 #include "TestWait.hpp"
 #include "phantom/PhantomCase.hpp"
@@ -26,11 +27,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace std::chrono_literals;
 
-fs::path logFile(const std::string& name) {
-  const fs::path dir = fs::path(test::testDataDir()).parent_path() / "redis-logs";
-  fs::create_directories(dir);
-  return dir / (name + ".log");
-}
+fs::path logFile(const std::string& name) { return test::redisLogFile(name); }
 
 // A fresh data folder of its own, sharing the mesh cache of the test servers' folder (built
 // tissue is keyed by its inputs' content, so sharing it is what a deployment does too).

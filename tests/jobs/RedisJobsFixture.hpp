@@ -1,0 +1,33 @@
+#pragma once
+// What the tests of jobs on Redis share: their processes' log files, a worker on the test data
+// folder, the phantom opened with a maxillary advance, a job's next message of a type, and the
+// entries the workers have taken but not acknowledged.
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "../server/WsTestClient.hpp"
+#include "RedisTestServer.hpp"
+
+namespace orthosim::test {
+
+// <build>/test-data/redis-logs/<name>.log (the folder made when missing).
+std::filesystem::path redisLogFile(const std::string& name);
+
+// `orthosim worker --name NAME` on the test data folder, with a visibility timeout of `visibility`
+// seconds, its stderr in redisLogFile(name); ready when it says so.
+std::unique_ptr<ChildProcess> startRedisWorker(const RedisTestServer& redis, const std::string& name,
+                                               const std::string& visibility = "2");
+
+// Opens phantom-0 and sets the maxilla `anteriorMm` forward, without a preview.
+void openPhantomAdvanced(WsTestClient& ws, double anteriorMm);
+
+// The next message of `type` about job `job`.
+nlohmann::json jobMessage(WsTestClient& ws, long long job, const std::string& type, std::chrono::milliseconds timeout);
+
+// Stream entries handed to a worker and not acknowledged yet.
+long long pendingJobs(const RedisTestServer& redis);
+
+}  // namespace orthosim::test
