@@ -31,7 +31,9 @@ inline LeFortIMatch compareLeFortI(const std::string& phantomCaseFile, const std
     EXPECT_TRUE(r.converged) << r.error;
     return m.deformedSkin(r.state.x);
   };
-  const CaseModel phantom = buildCaseModel(phantomSpec, Resolution::Coarse);
+  // The phantom's tissue from the build tree's cache (the tests run in processes of their own); the
+  // imported case is meshed, which is what these tests check.
+  const CaseModel phantom = buildCaseModel(phantomSpec, Resolution::Coarse, {ORTHOSIM_TEST_CACHE_DIR});
   const CaseModel patient = buildCaseModel(spec, Resolution::Coarse);
   const SurfaceMesh expected = predict(phantom), predicted = predict(patient);
   ComparisonInput c;
