@@ -22,7 +22,8 @@ export function startServer(data = dataDir, extraArgs = [], port0 = 0) {
       if (m) resolve(Number(m[1]));
     });
     server.on("exit", (code) => reject(new Error(`orthosim serve exited with ${code}`)));
-    setTimeout(() => reject(new Error("orthosim serve did not start in 30 s")), 30000);
+    // unref: a pending timer would keep node (and the test) alive for its 30 s after the test.
+    setTimeout(() => reject(new Error("orthosim serve did not start in 30 s")), 30000).unref();
   });
   return { server, port };
 }
