@@ -1,6 +1,8 @@
 #include "jobs/ArrayJson.hpp"
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 namespace orthosim::server {
 using nlohmann::json;
@@ -100,6 +102,23 @@ std::vector<RigidPose> readPoses(const json& j, const std::string& where) {
     out.push_back(p);
   }
   return out;
+}
+
+json readResultJson(const std::filesystem::path& file, const std::string& what, const std::string& format) {
+  const std::string name = file.string();
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw BadResultFile(name + ": " + what + " cannot be read");
+  std::ostringstream s;
+  s << in.rdbuf();
+  json j;
+  try {
+    j = json::parse(s.str());
+  } catch (const json::parse_error& e) {
+    throw BadResultFile(name + ": not JSON (" + e.what() + ")");
+  }
+  const json* f = j.is_object() && j.contains("format") ? &j["format"] : nullptr;
+  if (!f || !f->is_string() || f->get<std::string>() != format) throw BadResultFile(name + ": /format: not " + format);
+  return j;
 }
 
 }  // namespace orthosim::server

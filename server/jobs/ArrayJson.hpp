@@ -3,6 +3,7 @@
 // cohort jobs): flat arrays of numbers, doubles printed to round-trip exactly. The readers check
 // every element and name what is wrong and where (a JSON pointer), never return NaN.
 #include <Eigen/Core>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -29,6 +30,10 @@ Eigen::VectorXd readVector(const nlohmann::json& j, const std::string& where, lo
 // Triangles index the vertices they come with.
 SurfaceMesh readSurface(const nlohmann::json& j, const std::string& where);
 std::vector<RigidPose> readPoses(const nlohmann::json& j, const std::string& where);
+
+// The JSON of result file `file` whose "format" must be `format`; `what` ("the band job's result")
+// names it when it cannot be read. Throws BadResultFile "FILE: reason" otherwise.
+nlohmann::json readResultJson(const std::filesystem::path& file, const std::string& what, const std::string& format);
 
 // The member `key` of object `j`, or BadResultFile "WHERE/KEY: required field is missing".
 const nlohmann::json& member(const nlohmann::json& j, const char* key, const std::string& where);

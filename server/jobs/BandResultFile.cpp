@@ -33,20 +33,8 @@ void writeBandResult(const std::filesystem::path& file, const BandOutcome& o) {
 
 BandOutcome readBandResult(const std::filesystem::path& file) {
   const std::string name = file.string();
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw BadResultFile(name + ": the band job's result cannot be read");
-  std::ostringstream s;
-  s << in.rdbuf();
-  json j;
+  const json j = readResultJson(file, "the band job's result", kBandResultFormat);
   try {
-    j = json::parse(s.str());
-  } catch (const json::parse_error& e) {
-    throw BadResultFile(name + ": not JSON (" + e.what() + ")");
-  }
-  try {
-    const json& format = member(j, "format", "");
-    if (!format.is_string() || format.get<std::string>() != kBandResultFormat)
-      throw BadResultFile(std::string("/format: not ") + kBandResultFormat);
     BandOutcome o;
     o.band = member(j, "band", "");
     if (!o.band.is_object()) throw BadResultFile("/band: must be an object");

@@ -37,20 +37,8 @@ void writeCohortResult(const std::filesystem::path& file, const CohortOutcome& o
 
 CohortOutcome readCohortResult(const std::filesystem::path& file, const CaseSpec& spec) {
   const std::string name = file.string();
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw BadResultFile(name + ": the cohort job's result cannot be read");
-  std::ostringstream s;
-  s << in.rdbuf();
-  json j;
+  const json j = readResultJson(file, "the cohort job's result", kCohortResultFormat);
   try {
-    j = json::parse(s.str());
-  } catch (const json::parse_error& e) {
-    throw BadResultFile(name + ": not JSON (" + e.what() + ")");
-  }
-  try {
-    const json& format = member(j, "format", "");
-    if (!format.is_string() || format.get<std::string>() != kCohortResultFormat)
-      throw BadResultFile(std::string("/format: not ") + kCohortResultFormat);
     const auto integer = [&](const char* key) {
       const json& v = member(j, key, "");
       if (!v.is_number_integer() || v.get<long long>() < 0)

@@ -206,15 +206,7 @@ TEST(RedisBandJobs, MalformedBandAndCohortJobsAreRefusedNotRun) {
   untagged["job"] = "feedfacefeedface-3";
   untagged["kind"] = "fine";
   c.command({"XADD", server::kJobStream, "*", "job", untagged.dump()});
-  std::vector<json> answers;
-  ASSERT_TRUE(test::waitUntil(
-      [&] {
-        answers.clear();
-        for (const server::RedisValue& e : c.command({"XRANGE", replies, "-", "+"}).array)
-          answers.push_back(json::parse(e.array[1].array[1].string));
-        return answers.size() >= 3;
-      },
-      30s, 50ms));
+  const std::vector<json> answers = test::replies(c, replies, 3, 30s);
   ASSERT_EQ(answers.size(), 3u);
   const std::vector<std::pair<std::string, std::string>> expected = {
       {"feedfacefeedface-1", "/band/range_scale: 50 is not in"},

@@ -1,6 +1,7 @@
 #include "RedisJobsFixture.hpp"
 
 #include "../server/ServerProcess.hpp"
+#include "TestWait.hpp"
 #include "jobs/JobMessage.hpp"
 #include "jobs/RedisConnection.hpp"
 
@@ -31,6 +32,20 @@ void openPhantomAdvanced(WsTestClient& ws, double anteriorMm) {
 
 json jobMessage(WsTestClient& ws, long long job, const std::string& type, std::chrono::milliseconds timeout) {
   return ws.waitFor([&](const json& m) { return m.value("type", "") == type && m.value("job", -1LL) == job; }, timeout);
+}
+
+std::vector<json> replies(server::RedisConnection& redis, const std::string& stream, std::size_t count,
+                          std::chrono::milliseconds timeout) {
+  std::vector<json> out;
+  (void)waitUntil(
+      [&] {
+        out.clear();
+        for (const server::RedisValue& e : redis.command({"XRANGE", stream, "-", "+"}).array)
+          out.push_back(json::parse(e.array[1].array[1].string));
+        return out.size() >= count;
+      },
+      timeout, 50ms);
+  return out;
 }
 
 long long pendingJobs(const RedisTestServer& redis) {

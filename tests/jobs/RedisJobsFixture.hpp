@@ -7,9 +7,11 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "../server/WsTestClient.hpp"
 #include "RedisTestServer.hpp"
+#include "jobs/RedisConnection.hpp"
 
 namespace orthosim::test {
 
@@ -26,6 +28,10 @@ void openPhantomAdvanced(WsTestClient& ws, double anteriorMm);
 
 // The next message of `type` about job `job`.
 nlohmann::json jobMessage(WsTestClient& ws, long long job, const std::string& type, std::chrono::milliseconds timeout);
+
+// The messages on reply stream `stream`, once there are `count` (or when `timeout` has passed).
+std::vector<nlohmann::json> replies(server::RedisConnection& redis, const std::string& stream, std::size_t count,
+                                    std::chrono::milliseconds timeout);
 
 // Stream entries handed to a worker and not acknowledged yet.
 long long pendingJobs(const RedisTestServer& redis);

@@ -177,15 +177,7 @@ TEST(RedisJobs, MalformedForeignAndStaleJobsAreRefusedNotRun) {
   unknown.job = "feedfacefeedface-2";
   unknown.caseId = "nobody-here";
   c.command({"XADD", server::kJobStream, "*", "job", server::encodeJobMessage(unknown)});
-  std::vector<json> answers;
-  ASSERT_TRUE(test::waitUntil(
-      [&] {
-        answers.clear();
-        for (const server::RedisValue& e : c.command({"XRANGE", replies, "-", "+"}).array)
-          answers.push_back(json::parse(e.array[1].array[1].string));
-        return answers.size() >= 2;
-      },
-      30s, 50ms));
+  const std::vector<json> answers = test::replies(c, replies, 2, 30s);
   ASSERT_EQ(answers.size(), 2u);
   EXPECT_EQ(answers[0]["type"], "job_failed");
   EXPECT_EQ(answers[0]["job"], stale.job);
