@@ -71,8 +71,9 @@ function connect() {
 const handlers = {
   welcome: (m) => {
     state.limits = m.limits;
-    // After a reconnect the former session's fine jobs are resumed once the case is open again.
-    if (state.session && state.session !== m.session) state.formerSession = state.session;
+    // After a reconnect the former session's fine jobs are resumed once the case is open again
+    // (the first former one: a session that dropped again before opening the case holds none).
+    if (state.session && state.session !== m.session && !state.formerSession) state.formerSession = state.session;
     state.session = m.session;
   },
   cases: (m) => {
