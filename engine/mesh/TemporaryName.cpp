@@ -7,10 +7,14 @@
 
 namespace orthosim {
 
+std::string hostName() {
+  char name[256] = {};
+  return ::gethostname(name, sizeof name - 1) == 0 ? name : "";
+}
+
 std::string temporarySuffix() {
   static const std::string host = [] {
-    char name[256] = {};
-    std::string h = ::gethostname(name, sizeof name - 1) == 0 ? name : "host";
+    std::string h = hostName();
     for (char& c : h)
       if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.') c = '_';
     return h.empty() ? std::string("host") : h.substr(0, 64);

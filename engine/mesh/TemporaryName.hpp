@@ -8,6 +8,9 @@
 
 namespace orthosim {
 
+// This machine's host name as gethostname gives it; empty when it has none.
+std::string hostName();
+
 // Unique across hosts, processes, threads and calls; only letters, digits, '-' and '.'.
 std::string temporarySuffix();
 

@@ -1,7 +1,6 @@
 #include "jobs/JobMessage.hpp"
 
 #include <unistd.h>
-#include "mesh/TemporaryName.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -15,6 +14,7 @@
 #include <sstream>
 
 #include "cases/Identifier.hpp"
+#include "mesh/TemporaryName.hpp"
 
 namespace orthosim::server {
 using nlohmann::json;

@@ -10,6 +10,7 @@
 #include "jobs/BandWorkerJob.hpp"
 #include "jobs/CohortWorkerJob.hpp"
 #include "jobs/JobStream.hpp"
+#include "mesh/TemporaryName.hpp"
 #include "session/FineJob.hpp"
 
 namespace orthosim::server {
@@ -21,11 +22,7 @@ namespace {
 
 void say(const std::string& line) { std::cerr << ("orthosim worker: " + line + "\n") << std::flush; }
 
-std::string defaultName() {
-  char host[256] = {};
-  ::gethostname(host, sizeof host - 1);
-  return std::string(host) + "-" + std::to_string(::getpid());
-}
+std::string defaultName() { return hostName() + "-" + std::to_string(::getpid()); }
 
 // The entries of an XREADGROUP or XAUTOCLAIM reply: [[id, [field, value, ...]], ...].
 const std::vector<RedisValue>* entriesOf(const RedisValue& r, bool autoclaim) {

@@ -4,6 +4,7 @@
 
 #include <thread>
 
+#include "mesh/TemporaryName.hpp"
 #include "session/RandomId.hpp"
 
 namespace orthosim::server {
@@ -25,11 +26,9 @@ std::string checkedReplicaName(const std::string& name) {
 
 std::string defaultReplicaName(int port) {
   if (port == 0) return "";
-  char host[256] = {};
-  ::gethostname(host, sizeof host - 1);
   std::string name;
-  for (const char* p = host; *p && name.size() < 56; ++p) {
-    const char ch = *p;
+  for (const char ch : hostName()) {
+    if (name.size() >= 56) break;
     const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '-';
     name += ok ? ch : '_';
   }

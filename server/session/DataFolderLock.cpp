@@ -11,6 +11,8 @@
 #include <string>
 #include <thread>
 
+#include "mesh/TemporaryName.hpp"
+
 namespace orthosim::server {
 namespace fs = std::filesystem;
 namespace {
@@ -37,11 +39,6 @@ std::string holderOf(int fd) {
 // " (TEXT)", or "" without a text.
 std::string inParentheses(const std::string& prefix, const std::string& text) {
   return text.empty() ? "" : " (" + prefix + text + ")";
-}
-
-std::string hostName() {
-  char name[256] = {};
-  return ::gethostname(name, sizeof name - 1) == 0 ? name : "?";
 }
 
 // The start lock, waited for up to kStartWait: starts are taken one at a time.
@@ -94,7 +91,8 @@ DataFolderLock::DataFolderLock(const fs::path& dataDir, DataFolderUse use, const
       throw std::runtime_error(folder + " is in use by another orthosim serve" + inParentheses("", holderOf(fd_)) +
                                ": give each server its own --data");
     }
-    const std::string holder = "pid " + std::to_string(::getpid()) + " on host " + hostName() + ", " + who + "\n";
+    const std::string holder =
+        "pid " + std::to_string(::getpid()) + " on host " + (hostName().empty() ? "?" : hostName()) + ", " + who + "\n";
     if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, holder.data(), holder.size(), 0) < 0) {
       // The lock holds without the holder's name; only the message of a refused process is poorer.
     }
