@@ -6,7 +6,7 @@
 
 #include "math/Angles.hpp"
 #include "phantom/ImplicitShapes.hpp"
-#include "phantom/SweepSurface.hpp"
+#include "mesh/SweepSurface.hpp"
 
 namespace orthosim::phantom {
 namespace {

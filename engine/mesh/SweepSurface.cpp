@@ -1,10 +1,10 @@
-#include "phantom/SweepSurface.hpp"
+#include "mesh/SweepSurface.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-namespace orthosim::phantom {
+namespace orthosim {
 namespace {
 
 // Points at equal arc length along a polyline, first and last kept.
@@ -89,4 +89,4 @@ SurfaceMesh meshSweep(const std::vector<SweepSection>& sections, double h) {
   return m;
 }
 
-}  // namespace orthosim::phantom
+}  // namespace orthosim

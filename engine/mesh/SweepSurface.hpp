@@ -10,7 +10,7 @@
 
 #include "mesh/SurfaceMesh.hpp"
 
-namespace orthosim::phantom {
+namespace orthosim {
 
 struct SweepSection {
   std::vector<Eigen::Vector3d> sideA;  // pole P ... pole Q
@@ -20,4 +20,4 @@ struct SweepSection {
 // Resamples every side to about `edgeLength` by arc length and stitches the sides; outward.
 SurfaceMesh meshSweep(const std::vector<SweepSection>& sections, double edgeLength);
 
-}  // namespace orthosim::phantom
+}  // namespace orthosim
