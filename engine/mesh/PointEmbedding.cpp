@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -123,7 +124,8 @@ class NearestTet {
       for (int a = 0; a < 4; ++a) items_[next[mesh.tets(a, e)]++] = e;
   }
 
-  // The nearest tet to p, its distance to p and p's barycentric coordinates in it.
+  // The nearest tet to p, its distance to p, and the barycentric coordinates in it of p's nearest
+  // point on the mesh (>= 0: that point lies on the tet's boundary face, edge or node).
   int find(const Eigen::Vector3d& p, const TetGrid& grid, double& dist, Eigen::Vector4d& bary) const {
     const NearestSurfacePoint q = tree_.nearest(p);
     dist = q.distance;
@@ -141,8 +143,12 @@ class NearestTet {
       for (int k = 1; k < n; ++k) holds = holds && (mesh_.tets.col(e).array() == feature[k]).any();
       if (!holds) continue;
       const Eigen::Vector4d b = grid.barycentric(e, p);
-      if (b.minCoeff() > bestMin) best = e, bestMin = b.minCoeff(), bary = b;
+      if (b.minCoeff() > bestMin) best = e, bestMin = b.minCoeff();
     }
+    // The nearest point's coordinates only involve the feature's nodes, so x(q) and the gradient
+    // interpolated at q do not depend on which of the tets holding the feature is taken.
+    bary = grid.barycentric(best, q.point).cwiseMax(0.0);
+    bary /= bary.sum();
     return best;
   }
 
@@ -164,6 +170,27 @@ double PointEmbedding::meanOutsideDistance() const {
   return n > 0 ? outside_.sum() / n : 0.0;
 }
 
+std::vector<Eigen::Matrix3d> PointEmbedding::nodeGradients(const Eigen::Matrix3Xd& x) const {
+  const int m = static_cast<int>(tetInverse_.size());
+  std::vector<Eigen::Matrix3d> f(m);
+  for (int t = 0; t < m; ++t) {
+    Eigen::Matrix3d d;
+    for (int a = 0; a < 3; ++a) d.col(a) = x.col(tetNodes_(a + 1, t)) - x.col(tetNodes_(0, t));
+    f[t] = d * tetInverse_[t];
+  }
+  std::vector<Eigen::Matrix3d> out(gradNodes_.size());
+  for (size_t g = 0; g < gradNodes_.size(); ++g) {
+    Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+    double volume = 0;
+    for (int s = gradStart_[g]; s < gradStart_[g + 1]; ++s) {
+      sum += tetVolume_[gradTet_[s]] * f[gradTet_[s]];
+      volume += tetVolume_[gradTet_[s]];
+    }
+    out[g] = sum / volume;
+  }
+  return out;
+}
+
 Eigen::Matrix3Xd PointEmbedding::apply(const Eigen::Matrix3Xd& deformedNodes) const {
   if (deformedNodes.cols() != numNodes_)
     throw std::invalid_argument("PointEmbedding::apply: " + std::to_string(deformedNodes.cols()) +
@@ -173,7 +200,39 @@ Eigen::Matrix3Xd PointEmbedding::apply(const Eigen::Matrix3Xd& deformedNodes) co
     out.col(i) = weights_(0, i) * deformedNodes.col(nodes_(0, i));
     for (int a = 1; a < 4; ++a) out.col(i) += weights_(a, i) * deformedNodes.col(nodes_(a, i));
   }
+  if (away_.empty()) return out;
+  const std::vector<Eigen::Matrix3d> g = nodeGradients(deformedNodes);
+  for (size_t k = 0; k < away_.size(); ++k) {
+    const int i = away_[k];
+    Eigen::Matrix3d f = Eigen::Matrix3d::Zero();
+    for (int a = 0; a < 4; ++a) f += weights_(a, i) * g[slots_(a, static_cast<Eigen::Index>(k))];
+    out.col(i) += f * offset_.col(i);
+  }
   return out;
+}
+
+std::vector<std::pair<int, double>> PointEmbedding::terms(int i) const {
+  std::map<int, double> w;
+  for (int a = 0; a < 4; ++a) w[nodes_(a, i)] += weights_(a, i);
+  const auto k = std::find(away_.begin(), away_.end(), i);
+  if (k != away_.end()) {
+    // F_t o = sum_k c_k (x_k - x_0) with c = [X1-X0, X2-X0, X3-X0]^-1 o, averaged as in apply.
+    const Eigen::Index col = k - away_.begin();
+    for (int a = 0; a < 4; ++a) {
+      const int g = slots_(a, col);
+      double volume = 0;
+      for (int s = gradStart_[g]; s < gradStart_[g + 1]; ++s) volume += tetVolume_[gradTet_[s]];
+      for (int s = gradStart_[g]; s < gradStart_[g + 1]; ++s) {
+        const int t = gradTet_[s];
+        const Eigen::Vector3d c = weights_(a, i) * tetVolume_[t] / volume * (tetInverse_[t] * offset_.col(i));
+        for (int b = 0; b < 3; ++b) {
+          w[tetNodes_(b + 1, t)] += c[b];
+          w[tetNodes_(0, t)] -= c[b];
+        }
+      }
+    }
+  }
+  return {w.begin(), w.end()};
 }
 
 PointEmbedding embedPoints(const TetMesh& mesh, const Eigen::Matrix3Xd& points, const EmbeddingOptions& options) {
@@ -190,6 +249,7 @@ PointEmbedding embedPoints(const TetMesh& mesh, const Eigen::Matrix3Xd& points, 
   out.nodes_.resize(4, n);
   out.weights_.resize(4, n);
   out.outside_.resize(n);
+  out.offset_ = Eigen::Matrix3Xd::Zero(3, n);
   auto place = [&](int i, int e, double dist, const Eigen::Vector4d& bary) {
     out.tet_[i] = e;
     out.outside_[i] = dist;
@@ -221,9 +281,11 @@ PointEmbedding embedPoints(const TetMesh& mesh, const Eigen::Matrix3Xd& points, 
     Eigen::Vector4d bary = Eigen::Vector4d::Zero();
     double dist = 0;
     const int e = nearest.find(points.col(i), grid, dist, bary);
-    if (dist <= options.maxOutsideDistance)
+    if (dist <= options.maxOutsideDistance) {
       place(i, e, dist, bary);
-    else
+      out.offset_.col(i) = points.col(i) - grid.node(e, 0) * bary[0] - grid.node(e, 1) * bary[1] -
+                           grid.node(e, 2) * bary[2] - grid.node(e, 3) * bary[3];
+    } else
       refusedAt[i] = dist;
   }
   const int refused = static_cast<int>((refusedAt.array() >= 0).count());
@@ -236,6 +298,41 @@ PointEmbedding embedPoints(const TetMesh& mesh, const Eigen::Matrix3Xd& points, 
         << " mm outside the mesh, beyond the limit of " << options.maxOutsideDistance << " mm";
     if (refused > 1) msg << " (" << refused << " points in all)";
     throw std::invalid_argument(msg.str());
+  }
+
+  // What the gradients at the outside points' nodes need: the tets at each of those nodes.
+  out.away_ = std::move(away);
+  std::vector<int> slotOf(mesh.numNodes(), -1), compact(mesh.numTets(), -1);
+  out.slots_.resize(4, static_cast<Eigen::Index>(out.away_.size()));
+  for (size_t k = 0; k < out.away_.size(); ++k)
+    for (int a = 0; a < 4; ++a) {
+      int& slot = slotOf[out.nodes_(a, out.away_[k])];
+      if (slot < 0)
+        slot = static_cast<int>(out.gradNodes_.size()), out.gradNodes_.push_back(out.nodes_(a, out.away_[k]));
+      out.slots_(a, static_cast<Eigen::Index>(k)) = slot;
+    }
+  std::vector<std::vector<int>> at(out.gradNodes_.size());
+  for (int e = 0; e < mesh.numTets(); ++e)
+    for (int a = 0; a < 4; ++a)
+      if (slotOf[mesh.tets(a, e)] >= 0) at[slotOf[mesh.tets(a, e)]].push_back(e);
+  std::vector<int> used;
+  out.gradStart_.assign(1, 0);
+  for (const std::vector<int>& tets : at) {
+    for (int e : tets) {
+      if (compact[e] < 0) compact[e] = static_cast<int>(used.size()), used.push_back(e);
+      out.gradTet_.push_back(compact[e]);
+    }
+    out.gradStart_.push_back(static_cast<int>(out.gradTet_.size()));
+  }
+  out.tetNodes_.resize(4, static_cast<Eigen::Index>(used.size()));
+  out.tetInverse_.resize(used.size());
+  out.tetVolume_.resize(static_cast<Eigen::Index>(used.size()));
+  for (size_t t = 0; t < used.size(); ++t) {
+    Eigen::Matrix3d d;
+    for (int a = 0; a < 3; ++a) d.col(a) = grid.node(used[t], a + 1) - grid.node(used[t], 0);
+    out.tetNodes_.col(static_cast<Eigen::Index>(t)) = mesh.tets.col(used[t]);
+    out.tetInverse_[t] = d.inverse();
+    out.tetVolume_[static_cast<Eigen::Index>(t)] = std::abs(d.determinant()) / 6.0;
   }
   return out;
 }

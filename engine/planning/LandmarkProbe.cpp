@@ -37,7 +37,7 @@ std::vector<LandmarkProbe> landmarkProbes(const CaseModel& model, const std::vec
     std::map<int, double> weights;  // the corners' tetrahedra share nodes
     for (int k = 0; k < 3; ++k) {
       const int v = skin.triangles(k, p.triangle);
-      for (int j = 0; j < 4; ++j) weights[embedding.nodes()(j, v)] += p.weights[k] * embedding.weights()(j, v);
+      for (const auto& [node, w] : embedding.terms(v)) weights[node] += p.weights[k] * w;
     }
     LandmarkProbe probe;
     probe.name = name;

@@ -252,8 +252,11 @@ json caseJson(const CaseImportInput& in, const std::string& name, const json& ca
              {{{"name", "skull"}, {"surface", "skull.stl"}, {"fixed", true}},
               {{"name", "mandible"}, {"surface", "mandible.stl"}}}},
             {"cuts", cuts},
-            // Lips and cheeks slide on the teeth and bone of both jaws.
-            {"contact", {{{"bones", {"mandible", "skull"}}, {"range_mm", 15}}}}};
+            // Lips and cheeks slide on the teeth and bone of both jaws; tissue deeper than 30 mm
+            // below the skin (the floor of the mouth, the tongue: attached to the mandible in a
+            // patient) does not. The phantom's depth: its lips lie within 16 mm of the skin, its
+            // cheeks within 28 mm, its floor of the mouth 35-41 mm (docs/scene-format.md).
+            {"contact", {{{"bones", {"mandible", "skull"}}, {"range_mm", 15}, {"max_depth_mm", 30}}}}};
   if (landmarks) c["landmarks"] = "landmarks.json";
   if (fromLandmarks && !in.anterior && !in.superior) {
     c["frame"] = {{"anterior", vec(fromLandmarks->anterior)},

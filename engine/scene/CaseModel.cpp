@@ -9,6 +9,7 @@
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "scene/SceneFields.hpp"
+#include "scene/SkinOutside.hpp"
 
 namespace orthosim {
 
@@ -105,6 +106,7 @@ Scene caseScene(const CaseSpec& spec, const CaseTissue& tissue, FragmentCoupling
   scene.poissonRatio = spec.poissonRatio;
   scene.solver = spec.solver;
   scene.plan = spec.plan;
+  scene.landmarks = spec.landmarks;
 
   std::vector<BoneGroup> groups;
   for (size_t b = 0; b < spec.bones.size(); ++b) groups.push_back({spec.bones[b].name, tissue.boneNodes[b]});
@@ -166,15 +168,10 @@ CaseModel buildCaseModel(const CaseSpec& spec, Resolution resolution, const Case
       throw SceneError(spec.file + ": tissue.skin: " + e.what());
     }
     // Surface files store single precision, and a simplified tissue cuts corners of a curved skin:
-    // only distances that show on screen are worth a warning.
-    if (m.skinEmbedding.maxOutsideDistance() > 0.5) {
-      std::ostringstream s;
-      s << "skin: " << m.skinEmbedding.numOutside() << " of " << m.skinEmbedding.numPoints()
-        << " full-resolution vertices lie outside the " << resolutionName(resolution) << " tissue (max "
-        << m.skinEmbedding.maxOutsideDistance() << " mm, mean " << m.skinEmbedding.meanOutsideDistance()
-        << " mm); they follow the nearest tetrahedron";
-      m.warnings.push_back(s.str());
-    }
+    // only distances that show on screen are worth a warning, and it says where and why.
+    const SkinOutside outside = findSkinOutside(m.tissue.skin, m.skinEmbedding, spec.landmarks);
+    if (outside.maxDistance > outside.threshold)
+      m.warnings.push_back(describeSkinOutside(outside, resolutionName(resolution), m.tissue.skinTriangles));
   }
   return m;
 }

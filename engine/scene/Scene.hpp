@@ -89,6 +89,8 @@ struct Scene {
   std::vector<ContactSpec> contacts;           // none: no distance query is ever made
   std::map<std::string, FragmentMotion> plan;  // fragment name -> motion; absent: keeps its pose
   SolverSettings solver;
+  // Named points of the case (mm), so that messages can say where: not used by the solve.
+  std::map<std::string, Eigen::Vector3d> landmarks;
 
   std::optional<int> fragmentIndex(const std::string& name) const;
 };

@@ -46,6 +46,10 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
   const double contact0 = model.contactSeconds();
   SolveResult r;
   r.state = start;
+  // Tissue the poses alone crush is reported whatever the solve does (and before it when the
+  // caller asks findPinchedByPlan first); after the solve only what is new is added.
+  const std::vector<PinchedTissue> planned = findPinchedByPlan(model, start, targets);
+  for (const PinchedTissue& p : planned) r.warnings.push_back(describePinchedTissue(p, model.scene().landmarks));
   const double nominal = settings.substeps > 0 ? 1.0 / settings.substeps : 1.0;
   const double minStep = nominal / double(1 << std::min(settings.maxRefinements, 30));
   double s = 0.0, ds = nominal;
@@ -97,7 +101,11 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
   r.loadFraction = s;
   r.converged = s >= 1.0;
   summarize(model, r);
-  for (const PinchedTissue& p : findPinchedTissue(model, r.state.x)) r.warnings.push_back(describePinchedTissue(p));
+  for (const PinchedTissue& p : findPinchedTissue(model, r.state.x)) {
+    const auto same = [&](const PinchedTissue& q) { return q.fragments == p.fragments; };
+    if (std::none_of(planned.begin(), planned.end(), same))
+      r.warnings.push_back(describePinchedTissue(p, model.scene().landmarks));
+  }
   r.timings.contactQueries = (model.contact() ? model.contact()->queries() : 0) - queries0;
   r.timings.contact = model.contactSeconds() - contact0;
   r.timings.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

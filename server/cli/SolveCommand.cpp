@@ -8,6 +8,7 @@
 #include "mesh/TetgenIO.hpp"
 #include "scene/CaseModel.hpp"
 #include "scene/SceneFile.hpp"
+#include "solver/PinchedTissue.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim::cli {
@@ -63,6 +64,9 @@ int runSolve(const std::string& scenePath, const std::string& outDir, const Solv
     std::cerr << "orthosim: " << scenePath << ": " << e.what() << "\n";
     return 1;
   }
+  // Tissue the poses alone crush is known before the solve: say so before it starts.
+  for (const std::string& w : pinchedByPlanWarnings(*model, model->scene().plan))
+    std::cerr << "orthosim: warning: " << w << "\n";
   const SolveResult result = solveScene(*model);
   try {
     fs::create_directories(outDir);

@@ -28,7 +28,9 @@ struct PlanningSession::OpenCase {
   std::shared_ptr<const CaseModel> coarse;
   std::vector<PlanningFragment> fragments;  // the movable ones, in scene order
   SkinFigureProbe probe;
-  std::unique_ptr<Model> model;  // only the session's serial work touches it and lastGood
+  // Only the session's serial work solves with it and touches lastGood; set_poses reads its shared
+  // immutable parts (scene, coupling, energy) to find tissue the poses crush.
+  std::unique_ptr<Model> model;
   SimState lastGood;
   // Guarded by the session's mutex: the newest converged preview, for exports and comparisons.
   std::shared_ptr<const Eigen::Matrix3Xd> previewX;

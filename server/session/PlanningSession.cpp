@@ -22,6 +22,7 @@
 #include "session/SolveFiguresJson.hpp"
 #include "solver/Model.hpp"
 #include "solver/NewtonSolver.hpp"
+#include "solver/PinchedTissue.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim::server {
@@ -353,6 +354,8 @@ void PlanningSession::setPoses(MessageReader& r, const json& id) {
     poses = posesJson();
     for (const auto& [name, pose] : poses_)
       for (std::string& w : unusualPoseWarnings(name, pose)) warnings.push_back(std::move(w));
+    // Tissue these poses alone crush, before the preview's solve (the model's immutable parts only).
+    for (std::string& w : pinchedByPlanWarnings(*c->model, c->plan(poses_))) warnings.push_back(std::move(w));
   }
   reply({{"type", "poses"}, {"poses", std::move(poses)}, {"warnings", warnings}}, id);
   showLinear(id);
