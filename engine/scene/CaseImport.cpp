@@ -7,12 +7,14 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <variant>
 
 #include "mesh/LabelMapSurfaces.hpp"
 #include "mesh/PointsInside.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
+#include "mesh/SurfaceRules.hpp"
 #include "mesh/TemporaryName.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/LandmarkFrame.hpp"
@@ -53,12 +55,15 @@ SurfaceMesh readSurface(const std::string& path) {
   }
 }
 
-// `mesh` as read from `path`, scaled to mm and checked (repairs listed in `warnings`).
-SurfaceMesh checked(SurfaceMesh mesh, const std::string& path, double scale, SurfaceRequirement requirement,
-                    std::vector<std::string>& warnings) {
+// `mesh` as read from `path`, scaled to mm and checked (repairs listed in `warnings`): a cavity as it is,
+// skin and bones repaired by the rule the solve applies too (mesh/SurfaceRules).
+SurfaceMesh checked(SurfaceMesh mesh, const std::string& path, double scale,
+                    const std::variant<SurfaceRequirement, SurfaceRole>& rule, std::vector<std::string>& warnings) {
   mesh.vertices *= scale;
   try {
-    const SurfaceReport report = checkSurface(mesh, path, requirement);
+    const SurfaceReport report = std::holds_alternative<SurfaceRole>(rule)
+                                     ? repairAndCheck(mesh, path, std::get<SurfaceRole>(rule))
+                                     : checkSurface(mesh, path, std::get<SurfaceRequirement>(rule));
     warnings.insert(warnings.end(), report.warnings.begin(), report.warnings.end());
     if (!report.unitSuspicion.empty()) throw CaseImportError(path + ": " + report.unitSuspicion);
   } catch (const CaseImportError&) {
@@ -279,11 +284,9 @@ json caseJson(const CaseImportInput& in, const std::string& name, const json& ca
 void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir, double scale,
                  CaseImportReport& report) {
   std::vector<std::string>& w = report.warnings;
-  const SurfaceMesh skin = checked(std::move(sources.skin), sources.skinName, scale, SurfaceRequirement::Closed, w);
-  const SurfaceMesh skull =
-      checked(std::move(sources.skull), sources.skullName, scale, SurfaceRequirement::OpenAllowed, w);
-  const SurfaceMesh mandible =
-      checked(std::move(sources.mandible), sources.mandibleName, scale, SurfaceRequirement::OpenAllowed, w);
+  const SurfaceMesh skin = checked(std::move(sources.skin), sources.skinName, scale, SurfaceRole::Skin, w);
+  const SurfaceMesh skull = checked(std::move(sources.skull), sources.skullName, scale, SurfaceRole::Bone, w);
+  const SurfaceMesh mandible = checked(std::move(sources.mandible), sources.mandibleName, scale, SurfaceRole::Bone, w);
   const PointsInside inSkin(skin);
   requireInside(skin, inSkin, skull, sources.skullName);
   requireInside(skin, inSkin, mandible, sources.mandibleName);

@@ -8,10 +8,12 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <variant>
 
 #include "mesh/BoundaryFaces.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceImport.hpp"
+#include "mesh/SurfaceRules.hpp"
 #include "mesh/TetgenIO.hpp"
 #include "scene/BoneContact.hpp"
 #include "scene/SceneFields.hpp"
@@ -70,11 +72,17 @@ std::vector<int> boundaryNodes(const TetMesh& mesh) {
   return out;
 }
 
-SurfaceMesh readSurface(const CaseSpec& spec, const std::string& path, const std::string& field, SurfaceRequirement req,
-                        CaseTissue& t, const CaseTissueOptions& o) {
+// A surface of the case, checked; skin and bones by the rule import applied (mesh/SurfaceRules), so
+// that what import accepted is accepted here, repaired the same way if it was written unrepaired.
+SurfaceMesh readSurface(const CaseSpec& spec, const std::string& path, const std::string& field,
+                        const std::variant<SurfaceRequirement, SurfaceRole>& rule, CaseTissue& t,
+                        const CaseTissueOptions& o) {
   try {
     SurfaceMesh m = importSurface(path);
-    const SurfaceReport r = checkSurface(m, fs::path(path).filename().string(), req);
+    const std::string name = fs::path(path).filename().string();
+    const SurfaceReport r = std::holds_alternative<SurfaceRole>(rule)
+                                ? repairAndCheck(m, name, std::get<SurfaceRole>(rule))
+                                : checkSurface(m, name, std::get<SurfaceRequirement>(rule));
     for (const auto& w : r.warnings) say(t, o, "warning: " + w);
     return m;
   } catch (const SceneError&) {
@@ -186,15 +194,15 @@ CaseTissue buildCaseTissue(const CaseSpec& spec, Resolution resolution, const Ca
   }
   CaseTissue t;
   SurfaceTissueInput in;
-  in.envelope = readSurface(spec, spec.skin, "tissue.skin", SurfaceRequirement::Closed, t, o);
+  in.envelope = readSurface(spec, spec.skin, "tissue.skin", SurfaceRole::Skin, t, o);
   for (size_t k = 0; k < spec.cavities.size(); ++k) {
     in.solids.push_back(readSurface(spec, spec.cavities[k], "tissue.cavities[" + std::to_string(k) + "]",
                                     SurfaceRequirement::Closed, t, o));
     in.names.push_back(fs::path(spec.cavities[k]).stem().string());
   }
   for (size_t b = 0; b < spec.bones.size(); ++b) {
-    in.solids.push_back(readSurface(spec, spec.bones[b].surface, "bones[" + std::to_string(b) + "].surface",
-                                    SurfaceRequirement::Closed, t, o));
+    in.solids.push_back(
+        readSurface(spec, spec.bones[b].surface, "bones[" + std::to_string(b) + "].surface", SurfaceRole::Bone, t, o));
     in.names.push_back(spec.bones[b].name);
     in.bones.push_back(static_cast<int>(in.solids.size()) - 1);
   }
