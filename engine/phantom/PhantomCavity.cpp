@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "math/Angles.hpp"
-#include "phantom/ImplicitShapes.hpp"
 #include "mesh/SweepSurface.hpp"
+#include "phantom/ImplicitShapes.hpp"
 
 namespace orthosim::phantom {
 namespace {

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "math/Angles.hpp"
+#include "mesh/SweepSurface.hpp"
 #include "phantom/ImplicitShapes.hpp"
 #include "phantom/PhantomDesign.hpp"
-#include "mesh/SweepSurface.hpp"
 
 namespace orthosim::phantom {
 namespace {
