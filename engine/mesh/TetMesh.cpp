@@ -1,6 +1,7 @@
 #include "mesh/TetMesh.hpp"
 
 #include <Eigen/Dense>
+#include <cstdio>
 #include <stdexcept>
 
 namespace orthosim {
@@ -30,7 +31,9 @@ std::vector<int> TetMesh::unusedNodes() const {
   return out;
 }
 
-void validateMesh(const TetMesh& mesh, const std::string& where, int indexBase) {
+namespace {
+
+void validate(const TetMesh& mesh, const std::string& where, int indexBase, bool allowFlat) {
   if (mesh.numNodes() == 0) throw std::runtime_error(where + ": mesh has no nodes");
   if (mesh.numTets() == 0) throw std::runtime_error(where + ": mesh has no tetrahedra");
   for (int i = 0; i < mesh.numNodes(); ++i)
@@ -46,11 +49,26 @@ void validateMesh(const TetMesh& mesh, const std::string& where, int indexBase) 
                                  std::to_string(mesh.numNodes() - 1 + indexBase));
     }
     const double v = mesh.signedVolume(e, mesh.rest);
-    if (!(v > 1e-12 * scale * scale * scale))
-      throw std::runtime_error(where + ": element " + std::to_string(e + indexBase) +
+    const double tiny = 1e-12 * scale * scale * scale;
+    if (!(v > tiny) && !(allowFlat && v > -tiny)) {
+      // Where, so that a meshing failure can be traced to the surfaces there (a thin gap, a fold).
+      Eigen::Vector3d c = Eigen::Vector3d::Zero();
+      for (int a = 0; a < 4; ++a) c += 0.25 * mesh.rest.col(mesh.tets(a, e));
+      char at[96];
+      std::snprintf(at, sizeof at, " at (%.1f, %.1f, %.1f)", c.x(), c.y(), c.z());
+      throw std::runtime_error(where + ": element " + std::to_string(e + indexBase) + at +
                                (v < 0 ? " is inverted (negative volume " : " is degenerate (volume ") +
                                std::to_string(v) + " mm^3)");
+    }
   }
 }
+
+}  // namespace
+
+void validateMesh(const TetMesh& mesh, const std::string& where, int indexBase) {
+  validate(mesh, where, indexBase, false);
+}
+
+void validateMeshAllowingFlat(const TetMesh& mesh, const std::string& where) { validate(mesh, where, 0, true); }
 
 }  // namespace orthosim

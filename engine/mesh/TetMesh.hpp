@@ -25,5 +25,9 @@ struct TetMesh {
 // file it came from) when an index is out of range, a coordinate is not finite, or an element is
 // degenerate or inverted.
 void validateMesh(const TetMesh& mesh, const std::string& where, int indexBase = 0);
+// The same, but a tetrahedron of (numerically) zero volume passes: TetGen, bound to keep a nearly
+// flat stretch of surface, may make one, which the flat-tetrahedron split removes afterwards.
+// An inverted one (negative volume beyond rounding) still throws.
+void validateMeshAllowingFlat(const TetMesh& mesh, const std::string& where);
 
 }  // namespace orthosim

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include "mesh/CavityPoints.hpp"
 #include "mesh/InterfaceSlivers.hpp"
 #include "mesh/LongEdgeSplit.hpp"
+#include "mesh/MeshQuality.hpp"
 #include "mesh/SurfaceCleanup.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/Tetrahedralize.hpp"
@@ -126,26 +128,25 @@ EdgeSizing freeSurfaceSizing(const SurfaceTissueInput& in, const SimplifyReport&
   };
 }
 
-// Flat tetrahedra on one bone (mesh/InterfaceSlivers.hpp) removed by a free node each, in up to
-// three rounds (a cavity that could not be emptied may be after its neighbours were). Returns the
-// report's words.
-std::string splitFlatBoneTets(TetMesh& mesh, const LabelledSurface& boundary, const SurfaceTissueInput& in) {
-  const auto byLabel = labelNodes(boundary, mesh, static_cast<int>(in.solids.size()) + 1);
-  std::vector<std::vector<int>> bones;
-  for (int b : in.bones) bones.push_back(byLabel.at(b + 1));
-  std::vector<int> flat = flatTetsOnOneSet(mesh, bones, in.flatBoneDihedralDeg);
+// Flat tetrahedra with all four nodes on one of `sets` removed by a free node each
+// (mesh/InterfaceSlivers.hpp), in up to three rounds (a cavity that could not be emptied may be
+// after its neighbours were); the new nodes keep off every set in `keepOff`. Returns the report's
+// words.
+std::string splitFlatTets(TetMesh& mesh, const std::vector<std::vector<int>>& sets,
+                          const std::vector<std::vector<int>>& keepOff, double belowDeg, const std::string& where) {
+  std::vector<int> flat = flatTetsOnOneSet(mesh, sets, belowDeg);
   if (flat.empty()) return "";
   std::ostringstream how;
-  how << ", " << flat.size() << " flat tetrahedra on one bone";
+  how << ", " << flat.size() << " flat tetrahedra on one " << where;
   int added = 0;
   double worst = 180;
   for (int round = 0; round < 3 && !flat.empty(); ++round) {
-    const SliverSplitReport split = splitTets(mesh, flat, bones);
-    validateMesh(mesh, "splitting flat tetrahedra on the bones");
+    const SliverSplitReport split = splitTets(mesh, flat, keepOff);
+    validateMeshAllowingFlat(mesh, "splitting flat tetrahedra on the " + where + "s");
     added += split.nodesAdded;
     worst = std::min(worst, split.worstNewDeg);
     const size_t had = flat.size();
-    flat = flatTetsOnOneSet(mesh, bones, in.flatBoneDihedralDeg);
+    flat = flatTetsOnOneSet(mesh, sets, belowDeg);
     if (flat.size() >= had) break;
   }
   how << " removed by " << added << " new nodes (smallest dihedral of their tetrahedra " << worst << " deg), "
@@ -153,9 +154,65 @@ std::string splitFlatBoneTets(TetMesh& mesh, const LabelledSurface& boundary, co
   return how.str();
 }
 
+// Flat tetrahedra on one bone cannot give way (every node follows the bone), so those below
+// flatBoneDihedralDeg go. Elsewhere on the boundary (the skin, air cavities, where they meet a
+// bone) some nodes are free; there only the nearly degenerate ones (below flatFreeDihedralDeg:
+// TetGen, bound to keep a nearly planar stretch of surface or a thin gap between two surfaces,
+// can fill it with a tetrahedron of no volume) go, since their deformation gradient is ill-defined.
+std::string splitFlatSurfaceTets(TetMesh& mesh, const LabelledSurface& boundary, const SurfaceTissueInput& in) {
+  const auto byLabel = labelNodes(boundary, mesh, static_cast<int>(in.solids.size()) + 1);
+  std::vector<std::vector<int>> bones, onBoundary(1);
+  for (int l = 0; l < static_cast<int>(byLabel.size()); ++l) {
+    if (isBoneLabel(l, in.bones)) bones.push_back(byLabel[l]);
+    onBoundary[0].insert(onBoundary[0].end(), byLabel[l].begin(), byLabel[l].end());
+  }
+  onBoundary[0] = sortedUnique(std::move(onBoundary[0]));
+  const std::string how = splitFlatTets(mesh, bones, bones, in.flatBoneDihedralDeg, "bone");
+  return how + splitFlatTets(mesh, onBoundary, bones, in.flatFreeDihedralDeg, "boundary");
+}
+
+// Below this smallest dihedral angle a tetrahedron is degenerate: its deformation gradient is
+// ill-defined whatever its nodes do. The next, milder clean-up is tried; the last failure names
+// where it is and which surfaces its nodes lie on.
+constexpr double kDegenerateDeg = 0.1;
+
+void requireNoDegenerateTet(const TetMesh& mesh, const LabelledSurface& boundary, const SurfaceTissueInput& in) {
+  int worst = -1;
+  double worstDeg = kDegenerateDeg;
+  for (int e = 0; e < mesh.numTets(); ++e) {
+    const auto angles = dihedralAnglesDeg(mesh, e);
+    const double least = *std::min_element(angles.begin(), angles.end());
+    if (least < worstDeg) worstDeg = least, worst = e;
+  }
+  if (worst < 0) return;
+  const auto byLabel = labelNodes(boundary, mesh, static_cast<int>(in.solids.size()) + 1);
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  std::vector<std::string> on;
+  for (int a = 0; a < 4; ++a) {
+    const int n = mesh.tets(a, worst);
+    centre += 0.25 * mesh.rest.col(n);
+    for (size_t l = 0; l < byLabel.size(); ++l)
+      if (std::binary_search(byLabel[l].begin(), byLabel[l].end(), n)) {
+        const std::string name = l == 0 ? "skin" : in.names.at(l - 1);
+        if (std::find(on.begin(), on.end(), name) == on.end()) on.push_back(name);
+      }
+  }
+  std::ostringstream o;
+  o.precision(1);
+  o << std::fixed << "a tetrahedron at (" << centre.x() << ", " << centre.y() << ", " << centre.z()
+    << ") is degenerate (smallest dihedral angle " << std::scientific << std::setprecision(2) << worstDeg
+    << " degrees), with nodes on ";
+  for (size_t k = 0; k < on.size(); ++k) o << (k ? (k + 1 == on.size() ? " and " : ", ") : "") << on[k];
+  if (on.empty()) o << "no surface";
+  o << ": surfaces there nearly touch or run nearly parallel (a thin gap)";
+  throw std::runtime_error(o.str());
+}
+
 }  // namespace
 
-SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
+namespace {
+
+SurfaceTissue meshAsGiven(const SurfaceTissueInput& in) {
   SurfaceTissue out;
   auto t0 = Clock::now();
   const LabelledSurface full = subtractSurfaces(in.envelope, in.solids, in.names);
@@ -173,7 +230,7 @@ SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
   const LabelledSurface simple = simplifySurface(full, simplify, &simplified);
   how << "simplified to " << simplified.skinTriangles << " skin + " << simplified.solidTriangles
       << " interface triangles";
-  double boundarySeconds = since(t0), tetgenSeconds = 0;
+  double boundarySeconds = since(t0), tetgenSeconds = 0, splitSeconds = 0;
 
   // Needle and cap removal, boldest first. A bolder clean-up can fold the surface onto itself
   // (TetGen refuses it) or leave faces so nearly coplanar that TetGen, bound to keep them (-Y),
@@ -202,9 +259,17 @@ SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
           splitLongEdges(candidate, freeSurfaceSizing(in, simplified), boneVertices(candidate, in.bones), &split);
     boundarySeconds += since(t0);
     t0 = Clock::now();
+    std::string splitWords;
     try {
       tetgen.holes = cavityPoints(candidate.surface.vertices, candidate.surface.triangles);
       out.mesh = tetrahedralize(candidate.surface.vertices, candidate.surface.triangles, tetgen);
+      validateMeshAllowingFlat(out.mesh, "tetrahedralize");
+      tetgenSeconds += since(t0);
+      t0 = Clock::now();
+      splitWords = splitFlatSurfaceTets(out.mesh, candidate, in);
+      splitSeconds += since(t0);
+      t0 = Clock::now();
+      requireNoDegenerateTet(out.mesh, candidate, in);
       validateMesh(out.mesh, "tetrahedralize");
       meshed = true;
     } catch (const std::exception& e) {
@@ -219,12 +284,10 @@ SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
           << " (edges collapsed up to " << c.collapseMm << " mm)";
     else
       how << ", no needle and cap removal (every clean-up failed: " << lastError << ")";
+    how << splitWords;
     break;
   }
   if (!meshed) throw std::runtime_error(lastError);
-  t0 = Clock::now();
-  how << splitFlatBoneTets(out.mesh, boundary, in);
-  const double splitSeconds = since(t0);
   int skin = 0;
   for (int l : boundary.label) skin += l == 0;
   out.skinTriangles = skin;
@@ -237,10 +300,52 @@ SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
   std::ostringstream s;
   s << "boundary: " << full.surface.numTriangles() << " triangles at full resolution (" << out.skin.numTriangles()
     << " skin), " << how.str() << "; " << tetgen.holes.cols() << " enclosed cavities; boolean " << booleanSeconds
-    << " s, boundary " << boundarySeconds << " s, tetgen " << tetgenSeconds << " s, flat bone tetrahedra "
-    << splitSeconds << " s";
+    << " s, boundary " << boundarySeconds << " s, tetgen " << tetgenSeconds << " s, flat tetrahedra " << splitSeconds
+    << " s";
   out.report.push_back(s.str());
   return out;
+}
+
+// The air cavities shifted by `mm` along a fixed oblique direction: bones and skin stay.
+SurfaceTissueInput withCavitiesShifted(const SurfaceTissueInput& in, double mm) {
+  SurfaceTissueInput shifted = in;
+  const Eigen::Vector3d direction = Eigen::Vector3d(0.36, 0.48, 0.8).normalized();
+  for (size_t k = 0; k < shifted.solids.size(); ++k)
+    if (std::find(in.bones.begin(), in.bones.end(), static_cast<int>(k)) == in.bones.end())
+      shifted.solids[k].vertices.colwise() += mm * direction;
+  return shifted;
+}
+
+}  // namespace
+
+// Where an air cavity runs within a fraction of a millimetre of a bone or the skin (the mouth
+// slit through closed lips, the vestibule along the teeth), whether TetGen, bound to keep the
+// surfaces, leaves a tetrahedron of no volume turns on rounding-level details of the surfaces. So
+// when every clean-up fails, the cavities (air, whose exact place within a tenth of a millimetre
+// carries nothing) are shifted by kCavityShiftMm, then twice and three times that, and meshed
+// again; the report says so. Bones and skin are never moved.
+SurfaceTissue meshSurfaceTissue(const SurfaceTissueInput& in) {
+  constexpr double kCavityShiftMm = 0.1;
+  const bool cavities = in.solids.size() > in.bones.size();
+  std::string firstError;
+  for (int attempt = 0; attempt < (cavities ? 4 : 1); ++attempt) {
+    try {
+      if (attempt == 0) return meshAsGiven(in);
+      SurfaceTissue out = meshAsGiven(withCavitiesShifted(in, attempt * kCavityShiftMm));
+      std::ostringstream note;
+      note << "warning: the air cavities were shifted " << attempt * kCavityShiftMm
+           << " mm to mesh (as given: " << firstError << ")";
+      out.report.insert(out.report.begin(), note.str());
+      return out;
+    } catch (const std::exception& e) {
+      if (attempt == 0) firstError = e.what();
+      if (!cavities || attempt == 3)
+        throw std::runtime_error(firstError + (attempt ? " (and with the air cavities "
+                                                         "shifted up to 0.3 mm)"
+                                                       : ""));
+    }
+  }
+  throw std::logic_error("meshSurfaceTissue: unreachable");
 }
 
 }  // namespace orthosim

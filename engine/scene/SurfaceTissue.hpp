@@ -14,7 +14,7 @@
 namespace orthosim {
 
 // Part of the tissue cache key: bump when the meshing changes what it produces.
-constexpr const char* kSurfaceTissueVersion = "surface-tissue-5";
+constexpr const char* kSurfaceTissueVersion = "surface-tissue-6";
 
 struct SurfaceTissueInput {
   SurfaceMesh envelope;             // closed skin envelope (uv optional)
@@ -37,6 +37,8 @@ struct SurfaceTissueInput {
   // flatBoneDihedralDeg is replaced by tetrahedra joined to a new free node (mesh/InterfaceSlivers.hpp).
   std::vector<int> bones;
   double flatBoneDihedralDeg = 5;
+  // The same below this angle for four nodes on the skin or on one air cavity (free nodes).
+  double flatFreeDihedralDeg = 0.5;
 };
 
 struct SurfaceTissue {
