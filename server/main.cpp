@@ -156,6 +156,11 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->needs(importLabelMap);
   import->add_option("--cavity", importInput.cavities, "Closed air cavity inside the skin (repeatable)");
+  import
+      ->add_option(
+          "--oral-cavity", importInput.oralCavity,
+          "Without --cavity: auto builds the oral cavity closed lips and teeth in occlusion lack, none does not")
+      ->check(CLI::IsMember({"auto", "none"}));
   import->add_option("--texture", importInput.texture, "Image for the skin's texture coordinates");
   import->add_option("--landmarks", importInput.landmarks, "JSON file of landmarks {name: [x, y, z]}");
   import->add_option("--cuts", importCuts, "Osteotomy templates, comma-separated (e.g. le_fort_1,bsso)");

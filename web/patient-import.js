@@ -58,7 +58,8 @@ function finishImport(reply, error) {
   }
   const c = reply.case;
   const warnings = reply.warnings.length ? ` Warnings: ${reply.warnings.join("; ")}.` : "";
-  importStatus(`imported ${c.name} (${c.id}); frame ${reply.frame}${reply.scale !== 1 ? `, scaled ×${reply.scale}` : ""}.${warnings}`);
+  const built = reply.built && reply.built.length ? ` Built: ${reply.built.join("; ")}.` : "";
+  importStatus(`imported ${c.name} (${c.id}); frame ${reply.frame}${reply.scale !== 1 ? `, scaled ×${reply.scale}` : ""}.${built}${warnings}`);
   say(`patient ${c.id} imported; opening it`);
   state.openAfterList = c.id;
   send({ type: "list_cases" });

@@ -18,6 +18,8 @@
 #include "mesh/TemporaryName.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/LandmarkFrame.hpp"
+#include "scene/MouthGeometry.hpp"
+#include "scene/OralCavity.hpp"
 #include "scene/Osteotomy.hpp"
 
 namespace orthosim {
@@ -281,6 +283,50 @@ json caseJson(const CaseImportInput& in, const std::string& name, const json& ca
   return c;
 }
 
+// The frame the case will have: from the landmarks' Frankfort horizontal unless given, else the
+// label map's patient frame or the files' axes (caseJson writes the same).
+AnatomicalFrame caseFrame(const CaseImportInput& in, const std::optional<AnatomicalFrame>& fromLandmarks,
+                          bool fromLabelMap) {
+  if (fromLandmarks && !in.anterior && !in.superior) return *fromLandmarks;
+  const AnatomicalFrame defaults = fromLabelMap ? lpsFrame() : AnatomicalFrame();
+  if (!in.anterior && !in.superior) return defaults;
+  AnatomicalFrame f;
+  f.anterior = in.anterior.value_or(defaults.anterior).normalized();
+  f.superior = in.superior.value_or(defaults.superior).normalized();
+  f.right = f.anterior.cross(f.superior);
+  return f;
+}
+
+// Closed lips and teeth in occlusion, as scans have them, with no cavity given: the oral cavity is
+// built (scene/OralCavity) so that each lip follows its own jaw. Returns the file, or "" when none
+// was built; what was found and built goes to `report.built`.
+std::string autoOralCavity(const CaseImportInput& in, const SurfaceMesh& skin, const SurfaceMesh& skull,
+                           const SurfaceMesh& mandible, const Landmarks& landmarks, const AnatomicalFrame& frame,
+                           const PointsInside& inSkin, const fs::path& dir, CaseImportReport& report) {
+  if (!in.cavities.empty() || in.oralCavity == "none") return "";
+  if (in.oralCavity != "auto") throw CaseImportError("oral_cavity: '" + in.oralCavity + "' is not one of auto, none");
+  MouthGeometryInput mi;
+  mi.skin = &skin, mi.skull = &skull, mi.mandible = &mandible, mi.landmarks = &landmarks, mi.frame = frame;
+  const MouthGeometry mouth = findMouth(mi);
+  if (!mouth.teethFound) {
+    report.built.push_back("no oral cavity built (" + mouth.note +
+                           "): the tissue between the jaws moves with both; give the oral cavity as a file if the "
+                           "mouth has air");
+    return "";
+  }
+  OralCavity cavity;
+  try {
+    cavity = fitOralCavity(mouth, frame);
+  } catch (const std::exception& e) {
+    throw CaseImportError(std::string("oral cavity: ") + e.what());
+  }
+  requirePartlyInside(inSkin, cavity.surface, "the built oral cavity");
+  const std::string file = "cavity_0.stl";
+  exportSurface(cavity.surface, (dir / file).string());
+  report.built.push_back(cavity.note);
+  return file;
+}
+
 void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir, double scale,
                  CaseImportReport& report) {
   std::vector<std::string>& w = report.warnings;
@@ -290,27 +336,10 @@ void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir
   const PointsInside inSkin(skin);
   requireInside(skin, inSkin, skull, sources.skullName);
   requireInside(skin, inSkin, mandible, sources.mandibleName);
-  json cavities = json::array();
-  for (size_t k = 0; k < in.cavities.size(); ++k) {
-    const SurfaceMesh cavity =
-        checked(readSurface(in.cavities[k]), in.cavities[k], scale, SurfaceRequirement::Closed, w);
-    requirePartlyInside(inSkin, cavity, in.cavities[k]);
-    const std::string file = "cavity_" + std::to_string(k) + ".stl";
-    exportSurface(cavity, (dir / file).string());
-    cavities.push_back(file);
-  }
-  exportSurface(skin, (dir / "skin.obj").string());  // OBJ keeps the texture coordinates
-  exportSurface(skull, (dir / "skull.stl").string());
-  exportSurface(mandible, (dir / "mandible.stl").string());
-  if (!in.texture.empty()) {
-    std::error_code ec;
-    fs::copy_file(in.texture, dir / ("texture" + fs::path(in.texture).extension().string()), ec);
-    if (ec) throw CaseImportError(in.texture + ": cannot copy the texture: " + ec.message());
-  }
   std::optional<AnatomicalFrame> frame;
+  json landmarks;
   if (!in.landmarks.empty()) {
-    const json landmarks = readLandmarks(in.landmarks, scale);
-    std::ofstream(dir / "landmarks.json") << landmarks.dump(2);
+    landmarks = readLandmarks(in.landmarks, scale);
     try {
       frame = frameFromLandmarks(flatten(landmarks));
     } catch (const std::invalid_argument& e) {
@@ -324,6 +353,28 @@ void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir
     report.frame = in.anterior || in.superior ? "as given"
                    : sources.fromLabelMap     ? "the label map's patient frame (LPS: anterior -y, superior +z)"
                                               : "the files' axes (anterior -x, superior +z)";
+  json cavities = json::array();
+  for (size_t k = 0; k < in.cavities.size(); ++k) {
+    const SurfaceMesh cavity =
+        checked(readSurface(in.cavities[k]), in.cavities[k], scale, SurfaceRequirement::Closed, w);
+    requirePartlyInside(inSkin, cavity, in.cavities[k]);
+    const std::string file = "cavity_" + std::to_string(k) + ".stl";
+    exportSurface(cavity, (dir / file).string());
+    cavities.push_back(file);
+  }
+  const Landmarks flat = in.landmarks.empty() ? Landmarks() : flatten(landmarks);
+  const std::string built =
+      autoOralCavity(in, skin, skull, mandible, flat, caseFrame(in, frame, sources.fromLabelMap), inSkin, dir, report);
+  if (!built.empty()) cavities.push_back(built);
+  exportSurface(skin, (dir / "skin.obj").string());  // OBJ keeps the texture coordinates
+  exportSurface(skull, (dir / "skull.stl").string());
+  exportSurface(mandible, (dir / "mandible.stl").string());
+  if (!in.texture.empty()) {
+    std::error_code ec;
+    fs::copy_file(in.texture, dir / ("texture" + fs::path(in.texture).extension().string()), ec);
+    if (ec) throw CaseImportError(in.texture + ": cannot copy the texture: " + ec.message());
+  }
+  if (!in.landmarks.empty()) std::ofstream(dir / "landmarks.json") << landmarks.dump(2);
   std::ofstream out(dir / "case.json");
   out << caseJson(in, in.name, cavities, !in.landmarks.empty(), frame, sources.fromLabelMap).dump(2) << "\n";
   out.close();

@@ -23,11 +23,14 @@ struct CaseImportInput {
   std::string labelMap;
   std::vector<int> tissueLabels, skullLabels, mandibleLabels;
   std::vector<std::string> cavities;  // closed air spaces inside the skin (e.g. the oral cavity)
-  std::string texture;                // image for the skin's texture coordinates (optional)
-  std::string landmarks;              // JSON {name: [x, y, z]} (or grouped under hard/soft), same units
-  std::vector<std::string> cuts;      // osteotomy templates: le_fort_1, bsso, genioplasty, usso_left, ...
-  std::string units = "auto";         // "mm", "m", or "auto": mm, refusing sizes that look like metres
-  std::string name;                   // the case's name (default: the folder's)
+  // With no cavity given, "auto" builds the oral cavity a scan with closed lips and teeth in
+  // occlusion lacks (scene/OralCavity); "none" leaves the tissue between the jaws whole.
+  std::string oralCavity = "auto";
+  std::string texture;            // image for the skin's texture coordinates (optional)
+  std::string landmarks;          // JSON {name: [x, y, z]} (or grouped under hard/soft), same units
+  std::vector<std::string> cuts;  // osteotomy templates: le_fort_1, bsso, genioplasty, usso_left, ...
+  std::string units = "auto";     // "mm", "m", or "auto": mm, refusing sizes that look like metres
+  std::string name;               // the case's name (default: the folder's)
   // The anatomical frame; default: from the landmarks' Frankfort horizontal when they have it
   // (scene/LandmarkFrame), else the case format's (anterior -x, superior +z), or for a label map
   // its patient frame's (LPS: anterior -y, superior +z).
@@ -40,6 +43,7 @@ struct CaseImportReport {
   std::string frame;                  // where the anatomical frame came from, for the user
   std::string labelMap;               // from a label map: its voxels, their placement, the surfaces made
   std::vector<std::string> warnings;  // repairs made and defects accepted, "<file>: ..."
+  std::vector<std::string> built;     // what import made that the files lacked (the oral cavity), and where
 };
 
 // Thrown for anything wrong with the input; the message names the file (or option) and the defect.

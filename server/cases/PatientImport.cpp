@@ -62,6 +62,8 @@ void checkUpload(const PatientUpload& u, const CaseLibrary& cases, const fs::pat
     throw PatientImportError("case_exists", "id", "id: a case '" + u.id + "' exists already; choose another id");
   if (u.units != "auto" && u.units != "mm" && u.units != "m")
     throw PatientImportError("bad_field", "units", "units: '" + u.units + "' is none of auto, mm, m");
+  if (u.oralCavity != "auto" && u.oralCavity != "none")
+    throw PatientImportError("bad_field", "oral_cavity", "oral_cavity: '" + u.oralCavity + "' is none of auto, none");
   std::map<std::string, int> count;
   std::map<std::string, std::string> names;  // lower-cased file name -> field
   for (const UploadedFile& f : u.files) {
@@ -136,6 +138,7 @@ ImportedPatient PatientImporter::import(const PatientUpload& upload) {
   fs::create_directories(out.parent_path());
   CaseImportInput input;
   input.units = upload.units;
+  input.oralCavity = upload.oralCavity;
   input.cuts = upload.cuts;
   input.name = upload.name.empty() ? upload.id : upload.name;
   input.tissueLabels = upload.tissueLabels;

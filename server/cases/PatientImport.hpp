@@ -22,10 +22,11 @@ struct UploadedFile {
 };
 
 struct PatientUpload {
-  std::string id;                 // the new case's identifier (isIdentifier)
-  std::string name;               // for a human; default the id
-  std::string units = "auto";     // mm, m, or auto (mm, refusing sizes that look like metres)
-  std::vector<std::string> cuts;  // osteotomy templates
+  std::string id;                   // the new case's identifier (isIdentifier)
+  std::string name;                 // for a human; default the id
+  std::string units = "auto";       // mm, m, or auto (mm, refusing sizes that look like metres)
+  std::string oralCavity = "auto";  // auto: built when no cavity is given and the teeth are in occlusion; none
+  std::vector<std::string> cuts;    // osteotomy templates
   std::vector<UploadedFile> files;
   // With a label_map file instead of the three surfaces: the labels of each tissue in it.
   std::vector<int> tissueLabels, skullLabels, mandibleLabels;

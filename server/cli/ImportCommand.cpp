@@ -14,6 +14,7 @@ int runImport(const CaseImportInput& input, const std::string& outDir) {
     const CaseImportReport report = importCase(input, outDir);
     if (!report.labelMap.empty()) std::cout << report.labelMap << "\n";
     for (const std::string& w : report.warnings) std::cout << "warning: " << w << "\n";
+    for (const std::string& b : report.built) std::cout << "built: " << b << "\n";
     if (report.scale != 1.0) std::cout << "coordinates scaled by " << report.scale << " to millimetres\n";
     std::cout << "anatomical frame: " << report.frame << "\n";
     std::cout << "case written to " << report.caseFile << "; serve it with `orthosim serve --cases <its parent>`"

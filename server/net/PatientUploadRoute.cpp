@@ -78,6 +78,8 @@ server::PatientUpload patientUploadFromForm(const std::vector<FormPart>& parts) 
       upload.name = p.data;
     } else if (p.name == "units") {
       upload.units = p.data;
+    } else if (p.name == "oral_cavity") {
+      upload.oralCavity = p.data;
     } else if (p.name == "cuts") {
       for (const std::string& cut : commaList(p.data)) upload.cuts.push_back(cut);
     } else if (p.name == "tissue_labels" || p.name == "skull_labels" || p.name == "mandible_labels") {
@@ -86,10 +88,11 @@ server::PatientUpload patientUploadFromForm(const std::vector<FormPart>& parts) 
                                                             : upload.mandibleLabels;
       labels = labelNumbers(p.name, p.data);
     } else {
-      throw PatientImportError("bad_field", p.name,
-                               p.name +
-                                   ": no such field (id, name, units, cuts, skin, skull, mandible, label_map, "
-                                   "tissue_labels, skull_labels, mandible_labels, cavity, texture, landmarks)");
+      throw PatientImportError(
+          "bad_field", p.name,
+          p.name +
+              ": no such field (id, name, units, oral_cavity, cuts, skin, skull, mandible, label_map, "
+              "tissue_labels, skull_labels, mandible_labels, cavity, texture, landmarks)");
     }
   }
   // A browser sends an empty part for a file input left empty: that is no file.
@@ -112,7 +115,8 @@ void importPatient(server::PlanningService& service, Request request, std::funct
                         {{"case", body},
                          {"scale", imported.report.scale},
                          {"frame", imported.report.frame},
-                         {"warnings", imported.report.warnings}},
+                         {"warnings", imported.report.warnings},
+                         {"built", imported.report.built}},
                         to));
     } catch (const FormError& e) {
       done(uploadError(http::status::bad_request, "bad_form", "", e.what(), to));

@@ -127,6 +127,7 @@ TEST_F(PatientUpload, ThePhantomsSurfacesBecomeACaseThatOpensPreviewsAndStays) {
     EXPECT_EQ(created["case"]["name"], "Test patient");
     EXPECT_EQ(created["case"]["source"], "import");
     EXPECT_EQ(created["scale"], 1.0);
+    EXPECT_EQ(created["built"], json::array());  // the oral cavity came as a file: none is built
     const std::vector<std::string> ids = caseIds(server.port());
     EXPECT_NE(std::find(ids.begin(), ids.end(), "patient-1"), ids.end());
     EXPECT_EQ(importsOnDisk(), std::vector<std::string>{"patients/patient-1"});  // nothing staged is left
@@ -196,16 +197,26 @@ TEST_F(PatientUpload, EachBadUploadGetsItsOwnErrorAndLeavesNothing) {
   parts[2].data = "furlongs";
   refused(parts, http::status::bad_request, "bad_field", "units", "none of auto, mm, m");
 
+  parts = small(phantomParts("p2"));
+  parts.push_back({"oral_cavity", "", "sometimes"});
+  refused(parts, http::status::bad_request, "bad_field", "oral_cavity", "none of auto, none");
+
   // Damaged surfaces: the importer's message names the user's file and the defect.
   parts = phantomParts("p2");
   parts[6].fileName = "broken_jaw.stl";
   parts[6].data = parts[6].data.substr(0, 1000);
   refused(parts, http::status::bad_request, "import_failed", "", "broken_jaw.stl");
+  // A small hole is filled (repaired and reported); half the skin missing is not.
   parts = phantomParts("p2");
   parts[4].fileName = "holed_skin.obj";
-  parts[4].data.erase(parts[4].data.find("\nf ") + 1, parts[4].data.find('\n', parts[4].data.find("\nf ") + 1) -
-                                                          parts[4].data.find("\nf "));  // one triangle less
-  refused(parts, http::status::bad_request, "import_failed", "", "holed_skin.obj");
+  {
+    std::string& obj = parts[4].data;
+    const size_t firstFace = obj.find("\nf ") + 1;
+    size_t cut = firstFace + (obj.size() - firstFace) / 2;
+    cut = obj.find("\nf ", cut) + 1;
+    obj.erase(cut);  // the second half of the triangles
+  }
+  refused(parts, http::status::bad_request, "import_failed", "", "holed_skin.obj: ");
 
   // Over the limit (1 MiB here): refused on its declared length, before the body is read.
   {
