@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "mesh/DisjointSets.hpp"
 #include "mesh/SelfIntersection.hpp"
 
 namespace orthosim {
@@ -30,16 +31,6 @@ std::string fmt(double v) {
 }
 std::string at(const Eigen::Vector3d& p) { return "(" + fmt(p.x()) + ", " + fmt(p.y()) + ", " + fmt(p.z()) + ")"; }
 std::string count(long n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); }
-
-struct Dsu {
-  std::vector<int> parent;
-  explicit Dsu(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void join(int a, int b) { parent[find(a)] = find(b); }
-};
 
 // The surface being checked: triangles over vertex indices, and for topology each vertex's
 // position class (vertices at the same position share one).
@@ -154,7 +145,7 @@ void measure(const Work& w, SurfaceReport& r, Examples& ex) {
   // Edges: one triangle = border, two running opposite ways = manifold and oriented.
   const std::vector<Edge> edges = edgesOf(w);
   const int nc = static_cast<int>(w.classPos.size());
-  Dsu corners(3 * r.triangles), border(nc);
+  DisjointSets corners(3 * r.triangles), border(nc);
   std::vector<char> onNonManifoldEdge(nc, 0), onBorder(nc, 0);
   r.boundaryEdges = r.nonManifoldEdges = r.inconsistentEdges = 0;
   auto corner = [&](int t, int cls) {

@@ -20,6 +20,7 @@
 #include <stdexcept>
 
 #include "mesh/Barycentric.hpp"
+#include "mesh/DisjointSets.hpp"
 #include "mesh/SurfaceDistance.hpp"
 
 namespace orthosim {
@@ -50,16 +51,6 @@ std::string at(const Eigen::Vector3d& p) { return "(" + fmt(p.x()) + ", " + fmt(
 std::string count(long n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); }
 
 Eigen::Vector3d vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
-
-struct Dsu {
-  std::vector<int> parent;
-  explicit Dsu(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void join(int a, int b) { parent[find(a)] = find(b); }
-};
 
 // The surface over position classes (a texture seam's duplicated vertices are one point), before
 // it goes to CGAL: separate pieces and the plane cut are simpler here.
@@ -110,7 +101,7 @@ Soup makeSoup(const SurfaceMesh& mesh) {
 // Drops separate pieces (joined through shared vertices) below the share of the largest.
 void dropPieces(Soup& s, const RepairOptions& o, std::vector<Repair>& out) {
   const int n = static_cast<int>(s.tris.size());
-  Dsu dsu(static_cast<int>(s.pos.size()));
+  DisjointSets dsu(static_cast<int>(s.pos.size()));
   for (const Tri& t : s.tris) dsu.join(t[0], t[1]), dsu.join(t[1], t[2]);
   std::map<int, double> area;
   std::map<int, Eigen::Vector3d> moment;
@@ -389,7 +380,7 @@ void removeCrossings(Cgal& c, const std::string& name, std::vector<Repair>& out)
   };
   std::vector<Eigen::Vector3d> at_;
   for (const auto& [f, g] : pairs) at_.push_back(0.5 * (centre(f) + centre(g)));
-  Dsu dsu(static_cast<int>(at_.size()));
+  DisjointSets dsu(static_cast<int>(at_.size()));
   for (std::size_t i = 0; i < at_.size(); ++i)
     for (std::size_t j = i + 1; j < at_.size(); ++j)
       if ((at_[i] - at_[j]).norm() < kClusterMm) dsu.join(static_cast<int>(i), static_cast<int>(j));

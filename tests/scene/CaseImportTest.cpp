@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ImportRefusal.hpp"
+#include "PhantomImportInput.hpp"
 #include "RunCli.hpp"
 #include "SameLeFortI.hpp"
 #include "mesh/SurfaceImport.hpp"
@@ -34,17 +35,7 @@ class CaseImport : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  CaseImportInput phantomInput() const {
-    CaseImportInput in;
-    in.skin = file("skin.obj");
-    in.skull = file("skull.stl");
-    in.mandible = file("mandible.stl");
-    in.cavities = {file("oral_cavity.stl")};
-    in.texture = file("skin.jpg");
-    in.landmarks = file("landmarks.json");
-    in.cuts = {"le_fort_1", "bsso"};
-    return in;
-  }
+  CaseImportInput phantomInput() const { return test::phantomImportInput(dir_ / "export"); }
   std::string file(const std::string& name) const { return (dir_ / "export" / name).string(); }
   // The message of a failed import into `out` (nothing may be left behind).
   static std::string refusal(const CaseImportInput& in, const fs::path& out) { return test::importRefusal(in, out); }

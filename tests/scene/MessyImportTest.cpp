@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "ImportRefusal.hpp"
+#include "PhantomImportInput.hpp"
 #include "RaggedSurfaces.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
@@ -31,17 +32,7 @@ class MessyImport : public ::testing::Test {
   static void TearDownTestSuite() { fs::remove_all(dir_); }
 
   static std::string file(const std::string& name) { return (dir_ / "export" / name).string(); }
-  static CaseImportInput phantomInput() {
-    CaseImportInput in;
-    in.skin = file("skin.obj");
-    in.skull = file("skull.stl");
-    in.mandible = file("mandible.stl");
-    in.cavities = {file("oral_cavity.stl")};
-    in.texture = file("skin.jpg");
-    in.landmarks = file("landmarks.json");
-    in.cuts = {"le_fort_1", "bsso"};
-    return in;
-  }
+  static CaseImportInput phantomInput() { return test::phantomImportInput(dir_ / "export"); }
   static long count(const std::vector<std::string>& lines, const std::string& part) {
     return std::count_if(lines.begin(), lines.end(),
                          [&](const std::string& l) { return l.find(part) != std::string::npos; });
