@@ -10,20 +10,11 @@
 #include <string>
 #include <unordered_map>
 
+#include "mesh/DisjointSets.hpp"
 #include "mesh/SelfIntersection.hpp"
 
 namespace orthosim {
 namespace {
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  }
-  void unite(int a, int b) { parent[find(a)] = find(b); }
-};
 
 long long edgeKey(int a, int b) { return (static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b); }
 
@@ -55,7 +46,7 @@ std::vector<char> defectiveTriangles(const Eigen::Matrix3Xd& V, const Eigen::Mat
   std::vector<char> bad(m, 0);
   bool topologyOk = true;
   const auto edges = edgeCorners(F);
-  UnionFind fans(3 * m);  // corner slots; joined across edges around the shared vertex
+  DisjointSets fans(3 * m);  // corner slots; joined across edges around the shared vertex
   auto slot = [&](int t, int v) {
     for (int c = 0; c < 3; ++c)
       if (F(c, t) == v) return 3 * t + c;
@@ -70,8 +61,8 @@ std::vector<char> defectiveTriangles(const Eigen::Matrix3Xd& V, const Eigen::Mat
       continue;
     }
     const int t1 = corners[1] / 3, a = F(c0, t0), b = F((c0 + 1) % 3, t0);
-    fans.unite(slot(t0, a), slot(t1, a));
-    fans.unite(slot(t0, b), slot(t1, b));
+    fans.join(slot(t0, a), slot(t1, a));
+    fans.join(slot(t0, b), slot(t1, b));
   }
   std::unordered_map<int, int> fanOf;  // vertex -> its first fan root
   for (int t = 0; t < m; ++t)
@@ -264,9 +255,9 @@ std::vector<Patch> makePatches(const LabelledSurface& in, const SimplifyOptions&
                                const std::vector<int>& region, const std::vector<std::pair<int, int>>& joins,
                                const std::vector<int>& level, std::vector<int>& patchOf) {
   const int m = in.surface.numTriangles();
-  UnionFind uf(m);
+  DisjointSets uf(m);
   for (const auto& [a, b] : joins)
-    if (level[a] == level[b]) uf.unite(a, b);
+    if (level[a] == level[b]) uf.join(a, b);
   std::vector<Patch> patches;
   std::vector<int> rootPatch(m, -1);
   patchOf.resize(m);
