@@ -12,6 +12,7 @@
 
 #include "mesh/DisjointSets.hpp"
 #include "mesh/SelfIntersection.hpp"
+#include "mesh/UsedVertices.hpp"
 
 namespace orthosim {
 namespace {
@@ -279,12 +280,8 @@ int repairZeroArea(Work& w) {
 
 SurfaceMesh toMesh(const Work& w, const SurfaceMesh& original) {
   // Keeps only vertices in some triangle, in their original order.
-  std::vector<int> newIndex(w.x.cols(), -1);
-  for (const Tri& t : w.tris)
-    for (int v : t) newIndex[v] = 0;
   int n = 0;
-  for (int& i : newIndex)
-    if (i == 0) i = n++;
+  const std::vector<int> newIndex = usedVertexIndex(w.tris, static_cast<int>(w.x.cols()), &n);
   SurfaceMesh out;
   out.vertices.resize(3, n);
   if (original.hasUv()) out.uv.resize(2, n);

@@ -22,6 +22,7 @@
 #include "mesh/Barycentric.hpp"
 #include "mesh/DisjointSets.hpp"
 #include "mesh/SurfaceDistance.hpp"
+#include "mesh/UsedVertices.hpp"
 
 namespace orthosim {
 namespace {
@@ -464,12 +465,8 @@ SurfaceMesh fromCgal(const Cgal& c, const Soup& s, const SurfaceMesh& input) {
     tris.push_back(t);
   }
   // Keep the used vertices in their order; new ones after.
-  std::vector<int> newIndex(n0 + added.size(), -1);
-  for (const Tri& t : tris)
-    for (int v : t) newIndex[v] = 0;
   int n = 0;
-  for (int& i : newIndex)
-    if (i == 0) i = n++;
+  const std::vector<int> newIndex = usedVertexIndex(tris, n0 + static_cast<int>(added.size()), &n);
   SurfaceMesh out;
   out.vertices.resize(3, n);
   if (input.hasUv()) out.uv.resize(2, n);
