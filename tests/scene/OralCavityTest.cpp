@@ -189,7 +189,7 @@ Eigen::Vector3d skinMove(const CaseModel& model, const std::string& landmark, bo
   return placeSkinPoint(model.deformedSkin(r.state.x), p) - placeSkinPoint(rest, p);
 }
 
-// The whole acceptance: the scan as a segmentation tool exports it - the skin open at a
+// A scan as it comes, end to end: as a segmentation tool exports it - the skin open at a
 // ragged neck cut and at both eyes, folded through itself at the forehead and a mouth corner, with a
 // crumb beside it; the skull cropped at the top; lips closed, teeth 0.7 mm apart, no cavity -
 // imports without hand work (each repair and the cavity reported), and the lower lip follows a
