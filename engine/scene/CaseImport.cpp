@@ -239,8 +239,9 @@ AnatomicalFrame lpsFrame() {
   return f;
 }
 
+// `frame`: none for the case format's default (the files' axes).
 json caseJson(const CaseImportInput& in, const std::string& name, const json& cavities, bool landmarks,
-              const std::optional<AnatomicalFrame>& fromLandmarks, bool fromLabelMap) {
+              const std::optional<AnatomicalFrame>& frame) {
   json tissue = {{"skin", "skin.obj"}};
   if (!cavities.empty()) tissue["cavities"] = cavities;
   if (!in.texture.empty()) tissue["texture"] = "texture" + fs::path(in.texture).extension().string();
@@ -265,34 +266,28 @@ json caseJson(const CaseImportInput& in, const std::string& name, const json& ca
             // cheeks within 28 mm, its floor of the mouth 35-41 mm (docs/scene-format.md).
             {"contact", {{{"bones", {"mandible", "skull"}}, {"range_mm", 15}, {"max_depth_mm", 30}}}}};
   if (landmarks) c["landmarks"] = "landmarks.json";
-  if (fromLandmarks && !in.anterior && !in.superior) {
-    c["frame"] = {{"anterior", vec(fromLandmarks->anterior)},
-                  {"superior", vec(fromLandmarks->superior)},
-                  {"right", vec(fromLandmarks->right)}};
-  } else if (in.anterior || in.superior) {
-    const AnatomicalFrame defaults = fromLabelMap ? lpsFrame() : AnatomicalFrame();
-    const Eigen::Vector3d a = in.anterior.value_or(defaults.anterior).normalized();
-    const Eigen::Vector3d s = in.superior.value_or(defaults.superior).normalized();
-    if (std::abs(a.dot(s)) > 1e-6)
-      throw CaseImportError("frame: anterior " + where(a) + " and superior " + where(s) + " must be orthogonal");
-    c["frame"] = {{"anterior", vec(a)}, {"superior", vec(s)}, {"right", vec(a.cross(s))}};
-  } else if (fromLabelMap) {
-    const AnatomicalFrame f = lpsFrame();
-    c["frame"] = {{"anterior", vec(f.anterior)}, {"superior", vec(f.superior)}, {"right", vec(f.right)}};
-  }
+  if (frame)
+    c["frame"] = {{"anterior", vec(frame->anterior)}, {"superior", vec(frame->superior)}, {"right", vec(frame->right)}};
   return c;
 }
 
-// The frame the case will have: from the landmarks' Frankfort horizontal unless given, else the
-// label map's patient frame or the files' axes (caseJson writes the same).
-AnatomicalFrame caseFrame(const CaseImportInput& in, const std::optional<AnatomicalFrame>& fromLandmarks,
-                          bool fromLabelMap) {
-  if (fromLandmarks && !in.anterior && !in.superior) return *fromLandmarks;
+// The frame the case will have: as given (the other axis from the defaults), else the landmarks'
+// Frankfort horizontal, else the label map's patient frame; none for the files' axes (the case
+// format's default).
+std::optional<AnatomicalFrame> caseFrame(const CaseImportInput& in, const std::optional<AnatomicalFrame>& fromLandmarks,
+                                         bool fromLabelMap) {
   const AnatomicalFrame defaults = fromLabelMap ? lpsFrame() : AnatomicalFrame();
-  if (!in.anterior && !in.superior) return defaults;
+  if (!in.anterior && !in.superior) {
+    if (fromLandmarks) return fromLandmarks;
+    if (fromLabelMap) return defaults;
+    return std::nullopt;
+  }
   AnatomicalFrame f;
   f.anterior = in.anterior.value_or(defaults.anterior).normalized();
   f.superior = in.superior.value_or(defaults.superior).normalized();
+  if (std::abs(f.anterior.dot(f.superior)) > 1e-6)
+    throw CaseImportError("frame: anterior " + where(f.anterior) + " and superior " + where(f.superior) +
+                          " must be orthogonal");
   f.right = f.anterior.cross(f.superior);
   return f;
 }
@@ -304,7 +299,6 @@ std::string autoOralCavity(const CaseImportInput& in, const SurfaceMesh& skin, c
                            const SurfaceMesh& mandible, const Landmarks& landmarks, const AnatomicalFrame& frame,
                            const PointsInside& inSkin, const fs::path& dir, CaseImportReport& report) {
   if (!in.cavities.empty() || in.oralCavity == "none") return "";
-  if (in.oralCavity != "auto") throw CaseImportError("oral_cavity: '" + in.oralCavity + "' is not one of auto, none");
   MouthGeometryInput mi;
   mi.skin = &skin, mi.skull = &skull, mi.mandible = &mandible, mi.landmarks = &landmarks, mi.frame = frame;
   const MouthGeometry mouth = findMouth(mi);
@@ -336,18 +330,18 @@ void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir
   const PointsInside inSkin(skin);
   requireInside(skin, inSkin, skull, sources.skullName);
   requireInside(skin, inSkin, mandible, sources.mandibleName);
-  std::optional<AnatomicalFrame> frame;
+  std::optional<AnatomicalFrame> fromLandmarks;
   json landmarks;
   if (!in.landmarks.empty()) {
     landmarks = readLandmarks(in.landmarks, scale);
     try {
-      frame = frameFromLandmarks(flatten(landmarks));
+      fromLandmarks = frameFromLandmarks(flatten(landmarks));
     } catch (const std::invalid_argument& e) {
       throw CaseImportError(in.landmarks + ": " + e.what());
     }
-    if (frame && !in.anterior && !in.superior)
-      report.frame = "from the Frankfort horizontal (porions, orbitale): anterior " + where(frame->anterior, 3) +
-                     ", superior " + where(frame->superior, 3);
+    if (fromLandmarks && !in.anterior && !in.superior)
+      report.frame = "from the Frankfort horizontal (porions, orbitale): anterior " +
+                     where(fromLandmarks->anterior, 3) + ", superior " + where(fromLandmarks->superior, 3);
   }
   if (report.frame.empty())
     report.frame = in.anterior || in.superior ? "as given"
@@ -362,9 +356,10 @@ void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir
     exportSurface(cavity, (dir / file).string());
     cavities.push_back(file);
   }
+  const std::optional<AnatomicalFrame> frame = caseFrame(in, fromLandmarks, sources.fromLabelMap);
   const Landmarks flat = in.landmarks.empty() ? Landmarks() : flatten(landmarks);
   const std::string built =
-      autoOralCavity(in, skin, skull, mandible, flat, caseFrame(in, frame, sources.fromLabelMap), inSkin, dir, report);
+      autoOralCavity(in, skin, skull, mandible, flat, frame.value_or(AnatomicalFrame()), inSkin, dir, report);
   if (!built.empty()) cavities.push_back(built);
   exportSurface(skin, (dir / "skin.obj").string());  // OBJ keeps the texture coordinates
   exportSurface(skull, (dir / "skull.stl").string());
@@ -376,7 +371,7 @@ void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir
   }
   if (!in.landmarks.empty()) std::ofstream(dir / "landmarks.json") << landmarks.dump(2);
   std::ofstream out(dir / "case.json");
-  out << caseJson(in, in.name, cavities, !in.landmarks.empty(), frame, sources.fromLabelMap).dump(2) << "\n";
+  out << caseJson(in, in.name, cavities, !in.landmarks.empty(), frame).dump(2) << "\n";
   out.close();
   if (!out) throw CaseImportError((dir / "case.json").string() + ": cannot write the case file");
   try {
@@ -404,6 +399,8 @@ CaseImportReport importCase(const CaseImportInput& input, const std::string& out
   const fs::path out = fs::absolute(outDir);
   if (fs::exists(out)) throw CaseImportError(out.string() + ": exists already; choose a new folder for the case");
   for (const std::string& kind : input.cuts) boneOfTemplate(kind);  // unknown templates before any work
+  if (input.oralCavity != "auto" && input.oralCavity != "none")
+    throw CaseImportError("oral_cavity: '" + input.oralCavity + "' is not one of auto, none");
   CaseImportInput named = input;
   if (named.name.empty()) named.name = out.filename().string();
   Sources sources = readSources(input);

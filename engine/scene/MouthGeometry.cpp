@@ -133,7 +133,6 @@ void measureArch(const MouthGeometryInput& in, const Frame& fr, const std::vecto
   g.archBackF = 1e300, g.archFrontF = -1e300;
   for (const auto& p : band) g.archBackF = std::min(g.archBackF, p.x()), g.archFrontF = std::max(g.archFrontF, p.x());
   // The labial faces of the incisors: the most anterior crown points near the midline.
-  g.upperLabialF = g.lowerLabialF = -1e300;
   const auto labial = [&](const SurfaceMesh& m, double uLow, double uHigh) {
     double front = -1e300;
     for (int i = 0; i < m.numVertices(); ++i) {
