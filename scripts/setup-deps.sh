@@ -25,6 +25,7 @@ PACKAGES=(
   libpng-dev             # PNG images: `orthosim render` output, PNG textures (engine/render)
   libstb-dev             # stb_easy_font.h: the bitmap font of the colour-map legend (header only)
   libvtk9-dev            # VTK 9.1: label maps (NIfTI, NRRD) to surfaces (engine/mesh/LabelMapSurfaces)
+  libvtk-dicom-dev       # vtk-dicom 0.8 with GDCM: CT and CBCT DICOM series (engine/volume/DicomSeries)
   libhiredis-dev         # hiredis 0.14, the Redis project's own C client: fine jobs on Redis Streams (server/jobs)
   redis-server           # Redis 7.0 (XAUTOCLAIM needs 6.2): the tests of serve --redis start their own
 )

@@ -142,6 +142,30 @@ int main(int argc, char** argv) {
       import->add_option("--label-map", importInput.labelMap,
                          "Instead of --skin, --skull, --mandible: one label map (.nii, .nii.gz, .nrrd, .nhdr)");
   for (auto* surface : {importSkin, importSkull, importMandible}) importLabelMap->excludes(surface);
+  auto* importDicom = import->add_option(
+      "--dicom", importInput.dicom,
+      "Folder of a CT or CBCT DICOM series (or several: choose with --series), segmented automatically");
+  for (auto* other : {importSkin, importSkull, importMandible, importLabelMap}) importDicom->excludes(other);
+  import->add_option("--series", importInput.dicomSeries, "With --dicom: the SeriesInstanceUID to use")
+      ->needs(importDicom);
+  double importSkinThreshold = 0, importBoneThreshold = 0;
+  std::vector<double> importMandibleSeed, importSkullSeed;
+  auto* skinThreshold =
+      import->add_option("--skin-threshold", importSkinThreshold,
+                         "With --dicom: air/tissue grey value (default -400 HU, or from the histogram)");
+  auto* boneThreshold = import->add_option("--bone-threshold", importBoneThreshold,
+                                           "With --dicom: bone grey value (default 300 HU, or from the histogram)");
+  import->add_option("--mandible-seed", importMandibleSeed, "With --dicom: a point x y z on the mandible (LPS mm)")
+      ->expected(3)
+      ->needs(importDicom);
+  import->add_option("--skull-seed", importSkullSeed, "With --dicom: a point x y z on the skull (LPS mm)")
+      ->expected(3)
+      ->needs(importDicom);
+  import->add_option("--voxel", importInput.segmentation.voxelMm, "With --dicom: working voxel size in mm (default 1)")
+      ->check(CLI::Range(0.2, 5.0))
+      ->needs(importDicom);
+  skinThreshold->needs(importDicom);
+  boneThreshold->needs(importDicom);
   import
       ->add_option("--tissue-labels", importInput.tissueLabels,
                    "With --label-map: the soft tissue's label numbers (comma-separated)")
@@ -290,6 +314,14 @@ int main(int argc, char** argv) {
         importInput.anterior = Eigen::Vector3d(importAnterior[0], importAnterior[1], importAnterior[2]);
       if (importSuperior.size() == 3)
         importInput.superior = Eigen::Vector3d(importSuperior[0], importSuperior[1], importSuperior[2]);
+      if (skinThreshold->count()) importInput.segmentation.skinThreshold = importSkinThreshold;
+      if (boneThreshold->count()) importInput.segmentation.boneThreshold = importBoneThreshold;
+      if (importMandibleSeed.size() == 3)
+        importInput.segmentation.mandibleSeed =
+            Eigen::Vector3d(importMandibleSeed[0], importMandibleSeed[1], importMandibleSeed[2]);
+      if (importSkullSeed.size() == 3)
+        importInput.segmentation.skullSeed =
+            Eigen::Vector3d(importSkullSeed[0], importSkullSeed[1], importSkullSeed[2]);
       return orthosim::cli::runImport(importInput, importOut);
     }
     if (*serve) return orthosim::cli::runServe(serveOptions);

@@ -14,6 +14,7 @@
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
 #include "mesh/SurfaceImport.hpp"
+#include "mesh/SurfacePieces.hpp"
 #include "mesh/SurfaceRules.hpp"
 #include "mesh/TemporaryName.hpp"
 #include "scene/CaseFile.hpp"
@@ -21,6 +22,8 @@
 #include "scene/MouthGeometry.hpp"
 #include "scene/OralCavity.hpp"
 #include "scene/Osteotomy.hpp"
+#include "scene/SuggestedLandmarks.hpp"
+#include "volume/DicomSeries.hpp"
 
 namespace orthosim {
 namespace {
@@ -114,8 +117,10 @@ void requirePartlyInside(const PointsInside& inSkin, const SurfaceMesh& cavity, 
 struct Sources {
   SurfaceMesh skin, skull, mandible;
   std::string skinName, skullName, mandibleName;
-  bool fromLabelMap = false;
-  std::string labelMapNote;  // the voxels and their placement, for the user
+  bool fromLabelMap = false;     // in a patient frame (LPS): a label map's or a scan's
+  std::string labelMapNote;      // the voxels and their placement, for the user
+  std::vector<SurfaceMesh> air;  // from a scan: the air inside the face, piece by piece
+  std::vector<std::string> scanNotes;
 };
 
 std::string labelList(const std::vector<int>& labels) {
@@ -124,9 +129,53 @@ std::string labelList(const std::vector<int>& labels) {
   return out;
 }
 
-Sources readSources(const CaseImportInput& in) {
+// A CT or CBCT series read, segmented, and its labels turned into surfaces.
+Sources readScan(const CaseImportInput& in) {
   Sources s;
+  DicomReadReport read;
+  CtSegmentation seg;
+  try {
+    DicomReadOptions options;
+    options.seriesUid = in.dicomSeries;
+    const CtVolume volume = readDicomSeries(in.dicom, options, &read);
+    seg = segmentCt(volume, in.segmentation);
+  } catch (const DicomError& e) {
+    throw CaseImportError(e.what());
+  } catch (const std::invalid_argument& e) {
+    throw CaseImportError(in.dicom + ": segmentation: " + e.what());
+  }
+  s.scanNotes.push_back(in.dicom + ": " + read.summary);
+  for (const std::string& w : read.warnings) s.scanNotes.push_back(in.dicom + ": " + w);
+  for (const std::string& n : seg.notes) s.scanNotes.push_back("segmentation: " + n);
+  using C = CtSegmentation;
+  const std::vector<int> present = seg.labels.labels();
+  std::vector<LabelRegion> regions = {
+      {"skin", present, true}, {"skull", {C::kSkull}, false}, {"mandible", {C::kMandible}, false}};
+  const bool air = std::binary_search(present.begin(), present.end(), int(C::kAir));
+  if (air) regions.push_back({"air", {C::kAir}, false});
+  try {
+    seg.labels.path = in.dicom;
+    const std::vector<SurfaceMesh> surfaces = labelMapSurfaces(seg.labels, regions);
+    s.skin = surfaces[0];
+    s.skull = surfaces[1];
+    s.mandible = surfaces[2];
+    if (air) s.air = surfacePieces(surfaces[3]);
+  } catch (const LabelMapError& e) {
+    throw CaseImportError(e.what());
+  }
+  s.skinName = in.dicom + " (skin)";
+  s.skullName = in.dicom + " (skull)";
+  s.mandibleName = in.dicom + " (mandible)";
+  s.fromLabelMap = true;
+  return s;
+}
+
+Sources readSources(const CaseImportInput& in) {
   const bool surfaces = !in.skin.empty() || !in.skull.empty() || !in.mandible.empty();
+  if (!in.dicom.empty() && (surfaces || !in.labelMap.empty()))
+    throw CaseImportError(in.dicom + ": give a DICOM series, a label map or the three surfaces, one of them");
+  if (!in.dicom.empty()) return readScan(in);
+  Sources s;
   if (!in.labelMap.empty() && surfaces)
     throw CaseImportError(in.labelMap + ": give either a label map or the skin, skull and mandible surfaces, not both");
   if (in.labelMap.empty()) {
@@ -292,13 +341,33 @@ std::optional<AnatomicalFrame> caseFrame(const CaseImportInput& in, const std::o
   return f;
 }
 
+// Whether the scan already has air between the incisors' edges (outside the skin, whose lips are
+// apart, or in a cavity of its own), saying where; none for closed lips, or without the incisors.
+std::optional<std::string> mouthHasAir(const Landmarks& landmarks, const PointsInside& inSkin,
+                                       const std::vector<SurfaceMesh>& air) {
+  const auto upper = landmarks.find("upper_incisor_tip"), lower = landmarks.find("lower_incisor_tip");
+  if (upper == landmarks.end() || lower == landmarks.end()) return std::nullopt;
+  const Eigen::Vector3d between = 0.5 * (upper->second + lower->second);
+  if (!inSkin(Eigen::Matrix3Xd(between))[0])
+    return "the lips are apart: the air between the incisors at " + where(between) + " is outside the skin";
+  for (const SurfaceMesh& piece : air)
+    if (PointsInside(piece)(Eigen::Matrix3Xd(between))[0])
+      return "the mouth has air between the incisors at " + where(between) + ", a cavity of the scan";
+  return std::nullopt;
+}
+
 // Closed lips and teeth in occlusion, as scans have them, with no cavity given: the oral cavity is
-// built (scene/OralCavity) so that each lip follows its own jaw. Returns the file, or "" when none
-// was built; what was found and built goes to `report.built`.
-std::string autoOralCavity(const CaseImportInput& in, const SurfaceMesh& skin, const SurfaceMesh& skull,
-                           const SurfaceMesh& mandible, const Landmarks& landmarks, const AnatomicalFrame& frame,
-                           const PointsInside& inSkin, const fs::path& dir, CaseImportReport& report) {
-  if (!in.cavities.empty() || in.oralCavity == "none") return "";
+// built (scene/OralCavity) so that each lip follows its own jaw. None when it is not built; what was
+// found and built goes to `report.built`.
+std::optional<SurfaceMesh> autoOralCavity(const CaseImportInput& in, const SurfaceMesh& skin, const SurfaceMesh& skull,
+                                          const SurfaceMesh& mandible, const Landmarks& landmarks,
+                                          const AnatomicalFrame& frame, const PointsInside& inSkin,
+                                          const std::vector<SurfaceMesh>& air, CaseImportReport& report) {
+  if (!in.cavities.empty() || in.oralCavity == "none") return std::nullopt;
+  if (const std::optional<std::string> open = mouthHasAir(landmarks, inSkin, air)) {
+    report.built.push_back("no oral cavity built: " + *open);
+    return std::nullopt;
+  }
   MouthGeometryInput mi;
   mi.skin = &skin, mi.skull = &skull, mi.mandible = &mandible, mi.landmarks = &landmarks, mi.frame = frame;
   const MouthGeometry mouth = findMouth(mi);
@@ -306,7 +375,7 @@ std::string autoOralCavity(const CaseImportInput& in, const SurfaceMesh& skin, c
     report.built.push_back("no oral cavity built (" + mouth.note +
                            "): the tissue between the jaws moves with both; give the oral cavity as a file if the "
                            "mouth has air");
-    return "";
+    return std::nullopt;
   }
   OralCavity cavity;
   try {
@@ -315,10 +384,57 @@ std::string autoOralCavity(const CaseImportInput& in, const SurfaceMesh& skin, c
     throw CaseImportError(std::string("oral cavity: ") + e.what());
   }
   requirePartlyInside(inSkin, cavity.surface, "the built oral cavity");
-  const std::string file = "cavity_0.stl";
-  exportSurface(cavity.surface, (dir / file).string());
   report.built.push_back(cavity.note);
-  return file;
+  return cavity.surface;
+}
+
+// A scan's air pieces kept as cavities, but not those the built oral cavity reaches (the mouth's own
+// air, which it replaces): two cavities must not cross.
+std::vector<SurfaceMesh> airApartFrom(const std::vector<SurfaceMesh>& air, const std::optional<SurfaceMesh>& oral,
+                                      const std::string& scan, CaseImportReport& report) {
+  if (!oral) return air;
+  constexpr double kApartMm = 2.0;
+  const PointsInside inOral(*oral);
+  std::vector<SurfaceMesh> kept;
+  for (const SurfaceMesh& piece : air) {
+    const std::vector<bool> inside = inOral(piece.vertices);
+    const bool crosses = std::find(inside.begin(), inside.end(), true) != inside.end() ||
+                         distancesToSurface(oral->vertices, oral->triangles, piece.vertices).minCoeff() < kApartMm;
+    if (!crosses) {
+      kept.push_back(piece);
+      continue;
+    }
+    std::ostringstream o;
+    o.precision(1);
+    o << std::fixed << scan << ": the air of " << std::abs(piece.signedVolume()) / 1000
+      << " cm3 at the mouth left to the built oral cavity";
+    report.built.push_back(o.str());
+  }
+  return kept;
+}
+
+// Landmarks placed by rules on the surfaces, grouped as a landmarks file is; what was placed and
+// what was not goes to `report.suggested`.
+json suggested(const SurfaceMesh& skin, const SurfaceMesh& skull, const SurfaceMesh& mandible,
+               const AnatomicalFrame& frame, CaseImportReport& report) {
+  SuggestedLandmarks s;
+  try {
+    s = suggestLandmarks(skin, skull, mandible, frame);
+  } catch (const std::invalid_argument& e) {
+    report.suggested.push_back(std::string("no landmarks suggested: ") + e.what());
+    return json::object();
+  }
+  json out = {{"hard", json::object()}, {"soft", json::object()}};
+  std::string names;
+  for (const auto& [group, marks] : {std::pair{"hard", &s.hard}, {"soft", &s.soft}})
+    for (const auto& [name, p] : *marks) {
+      out[group][name] = vec(p);
+      names += (names.empty() ? "" : ", ") + name;
+    }
+  report.suggested.push_back(std::to_string(s.hard.size() + s.soft.size()) +
+                             " landmarks placed by rules on the surfaces, to confirm or move: " + names);
+  report.suggested.insert(report.suggested.end(), s.notes.begin(), s.notes.end());
+  return out;
 }
 
 void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir, double scale,
@@ -345,8 +461,9 @@ void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir
   }
   if (report.frame.empty())
     report.frame = in.anterior || in.superior ? "as given"
-                   : sources.fromLabelMap     ? "the label map's patient frame (LPS: anterior -y, superior +z)"
-                                              : "the files' axes (anterior -x, superior +z)";
+                   : sources.fromLabelMap     ? "the " + std::string(in.dicom.empty() ? "label map" : "scan") +
+                                                "'s patient frame (LPS: anterior -y, superior +z)"
+                                          : "the files' axes (anterior -x, superior +z)";
   json cavities = json::array();
   for (size_t k = 0; k < in.cavities.size(); ++k) {
     const SurfaceMesh cavity =
@@ -357,10 +474,21 @@ void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir
     cavities.push_back(file);
   }
   const std::optional<AnatomicalFrame> frame = caseFrame(in, fromLandmarks, sources.fromLabelMap);
-  const Landmarks flat = in.landmarks.empty() ? Landmarks() : flatten(landmarks);
-  const std::string built =
-      autoOralCavity(in, skin, skull, mandible, flat, frame.value_or(AnatomicalFrame()), inSkin, dir, report);
-  if (!built.empty()) cavities.push_back(built);
+  if (in.landmarks.empty()) landmarks = suggested(skin, skull, mandible, frame.value_or(AnatomicalFrame()), report);
+  const Landmarks flat = flatten(landmarks);
+  const std::optional<SurfaceMesh> oral =
+      autoOralCavity(in, skin, skull, mandible, flat, frame.value_or(AnatomicalFrame()), inSkin, sources.air, report);
+  std::vector<SurfaceMesh> found = airApartFrom(sources.air, oral, in.dicom, report);
+  if (oral) found.push_back(*oral);
+  for (size_t k = 0; k < found.size(); ++k) {
+    const std::string name = k + 1 == found.size() && oral ? std::string("the built oral cavity")
+                                                           : in.dicom + " (air " + std::to_string(k + 1) + ")";
+    const SurfaceMesh cavity = checked(found[k], name, 1.0, SurfaceRequirement::Closed, w);
+    requirePartlyInside(inSkin, cavity, name);
+    const std::string file = "cavity_" + std::to_string(cavities.size()) + ".stl";
+    exportSurface(cavity, (dir / file).string());
+    cavities.push_back(file);
+  }
   exportSurface(skin, (dir / "skin.obj").string());  // OBJ keeps the texture coordinates
   exportSurface(skull, (dir / "skull.stl").string());
   exportSurface(mandible, (dir / "mandible.stl").string());
@@ -369,9 +497,10 @@ void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir
     fs::copy_file(in.texture, dir / ("texture" + fs::path(in.texture).extension().string()), ec);
     if (ec) throw CaseImportError(in.texture + ": cannot copy the texture: " + ec.message());
   }
-  if (!in.landmarks.empty()) std::ofstream(dir / "landmarks.json") << landmarks.dump(2);
+  const bool anyLandmark = !flat.empty();
+  if (anyLandmark) std::ofstream(dir / "landmarks.json") << landmarks.dump(2);
   std::ofstream out(dir / "case.json");
-  out << caseJson(in, in.name, cavities, !in.landmarks.empty(), frame).dump(2) << "\n";
+  out << caseJson(in, in.name, cavities, anyLandmark, frame).dump(2) << "\n";
   out.close();
   if (!out) throw CaseImportError((dir / "case.json").string() + ": cannot write the case file");
   try {
@@ -407,6 +536,7 @@ CaseImportReport importCase(const CaseImportInput& input, const std::string& out
   CaseImportReport report;
   report.scale = scaleFor(input.units, sources.skin, sources.skinName);
   report.labelMap = sources.labelMapNote;
+  report.scan = sources.scanNotes;
   // Written beside its place and renamed into it: a folder with case.json is always complete.
   const fs::path tmp = out.parent_path() / ("." + out.filename().string() + ".importing-" + temporarySuffix());
   fs::remove_all(tmp);

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "volume/CtSegmentation.hpp"
+
 namespace orthosim {
 
 struct CaseImportInput {
@@ -22,12 +24,19 @@ struct CaseImportInput {
   // together; the surfaces are in the map's patient frame, LPS mm (mesh/LabelMapSurfaces.hpp).
   std::string labelMap;
   std::vector<int> tissueLabels, skullLabels, mandibleLabels;
+  // Or a CT or CBCT scan: the folder of its DICOM series (searched recursively) and, when it holds
+  // several, the series' UID. It is segmented (volume/CtSegmentation) into the skin, the skull and
+  // the mandible with their teeth, and the air inside the face as cavities, in its patient frame.
+  std::string dicom;
+  std::string dicomSeries;
+  CtSegmentationOptions segmentation;
   std::vector<std::string> cavities;  // closed air spaces inside the skin (e.g. the oral cavity)
   // With no cavity given, "auto" builds the oral cavity a scan with closed lips and teeth in
   // occlusion lacks (scene/OralCavity); "none" leaves the tissue between the jaws whole.
   std::string oralCavity = "auto";
-  std::string texture;            // image for the skin's texture coordinates (optional)
-  std::string landmarks;          // JSON {name: [x, y, z]} (or grouped under hard/soft), same units
+  std::string texture;  // image for the skin's texture coordinates (optional)
+  // JSON {name: [x, y, z]} (or grouped under hard/soft), same units; without it they are suggested
+  std::string landmarks;
   std::vector<std::string> cuts;  // osteotomy templates: le_fort_1, bsso, genioplasty, usso_left, ...
   std::string units = "auto";     // "mm", "m", or "auto": mm, refusing sizes that look like metres
   std::string name;               // the case's name (default: the folder's)
@@ -44,6 +53,10 @@ struct CaseImportReport {
   std::string labelMap;               // from a label map: its voxels, their placement, the surfaces made
   std::vector<std::string> warnings;  // repairs made and defects accepted, "<file>: ..."
   std::vector<std::string> built;     // what import made that the files lacked (the oral cavity), and where
+  std::vector<std::string> scan;      // from a DICOM series: what was read, and how it was segmented
+  // Without a landmarks file: the landmarks placed by rules on the surfaces (scene/SuggestedLandmarks)
+  // for the user to confirm or move, and the notes of the rules (those not found, and why).
+  std::vector<std::string> suggested;
 };
 
 // Thrown for anything wrong with the input; the message names the file (or option) and the defect.

@@ -1,7 +1,8 @@
 // `orthosim import --skin S --skull K --mandible M [--cavity C]... [--texture T] [--landmarks L]
 // [--cuts le_fort_1,bsso] [--units auto|mm|m] [--name N] --out DIR`: a patient's segmented surfaces
 // as a case folder (scene/CaseImport), checked file by file. `--label-map F --tissue-labels 1
-// --skull-labels 2 --mandible-labels 3` takes one label map instead of the three surfaces.
+// --skull-labels 2 --mandible-labels 3` takes one label map instead of the three surfaces, `--dicom
+// DIR [--series UID]` a CT or CBCT series, segmented here. Without --landmarks they are suggested.
 #include <iostream>
 
 #include "cli/Commands.hpp"
@@ -13,8 +14,10 @@ int runImport(const CaseImportInput& input, const std::string& outDir) {
   try {
     const CaseImportReport report = importCase(input, outDir);
     if (!report.labelMap.empty()) std::cout << report.labelMap << "\n";
+    for (const std::string& line : report.scan) std::cout << "scan: " << line << "\n";
     for (const std::string& w : report.warnings) std::cout << "warning: " << w << "\n";
     for (const std::string& b : report.built) std::cout << "built: " << b << "\n";
+    for (const std::string& l : report.suggested) std::cout << "suggested: " << l << "\n";
     if (report.scale != 1.0) std::cout << "coordinates scaled by " << report.scale << " to millimetres\n";
     std::cout << "anatomical frame: " << report.frame << "\n";
     std::cout << "case written to " << report.caseFile << "; serve it with `orthosim serve --cases <its parent>`"

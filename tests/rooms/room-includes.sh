@@ -11,7 +11,9 @@ allowed() {
   case $1 in
     math | image) echo "" ;;
     mesh) echo "math" ;;
-    physics | scene) echo "mesh math" ;;
+    physics) echo "mesh math" ;;
+    volume) echo "mesh math" ;;
+    scene) echo "mesh volume math" ;;
     phantom) echo "mesh image math" ;;
     contact) echo "mesh scene math" ;;
     solver) echo "mesh physics scene contact math" ;;

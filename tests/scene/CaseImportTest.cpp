@@ -156,7 +156,8 @@ TEST_F(CaseImport, EachDefectIsNamedWithItsFile) {
 
   in = phantomInput();
   in.cuts = {"genioplasty"};
-  in.landmarks.clear();  // the template needs landmarks the case does not have
+  in.landmarks = (dir_ / "few_landmarks.json").string();  // the template needs landmarks the file lacks
+  std::ofstream(in.landmarks) << R"({"stomion": [-84, 0, -47.75]})";
   m = refusal(in, dir_ / "e");
   EXPECT_NE(m.find("does not load"), std::string::npos) << m;
   EXPECT_NE(m.find("needs the landmark"), std::string::npos) << m;
