@@ -37,9 +37,9 @@ class PhantomSegmentation : public ::testing::Test {
   }
   static std::vector<SurfaceMesh> surfaces(const CtSegmentation& s) {
     using C = CtSegmentation;
-    return labelMapSurfaces(s.labels, {{"skin", s.labels.labels(), true},
-                                       {"skull", {C::kSkull}, false},
-                                       {"mandible", {C::kMandible}, false}});
+    return labelMapSurfaces(
+        s.labels,
+        {{"skin", s.labels.labels(), true}, {"skull", {C::kSkull}, false}, {"mandible", {C::kMandible}, false}});
   }
   static fs::path* dir_;
   static test::PhantomCt* scan_;
