@@ -26,6 +26,7 @@ PACKAGES=(
   libstb-dev             # stb_easy_font.h: the bitmap font of the colour-map legend (header only)
   libvtk9-dev            # VTK 9.1: label maps (NIfTI, NRRD) to surfaces (engine/mesh/LabelMapSurfaces)
   libvtk-dicom-dev       # vtk-dicom 0.8 with GDCM: CT and CBCT DICOM series (engine/volume/DicomSeries)
+  libminizip-dev         # minizip (zlib's contrib): a CT scan uploaded as one .zip (server/cases/ScanFiles)
   libhiredis-dev         # hiredis 0.14, the Redis project's own C client: fine jobs on Redis Streams (server/jobs)
   redis-server           # Redis 7.0 (XAUTOCLAIM needs 6.2): the tests of serve --redis start their own
 )

@@ -38,6 +38,12 @@ int main(int argc, char** argv) {
   phantom->add_option("--out", phantomOut, "Output folder")->required();
   phantom->add_option("--variant", phantomVariant, "Morphology variant (see --help of the case: 0 class I, ...)")
       ->check(CLI::Range(0, 100));
+  std::string phantomCt;
+  double phantomCtSpacing = 0;
+  phantom->add_option("--ct", phantomCt,
+                      "Also write the phantom as a CT's DICOM series into this folder (to try a scan's import)");
+  phantom->add_option("--ct-spacing", phantomCtSpacing, "With --ct: isotropic voxel size in mm (default 0.5 x 0.5 x 1)")
+      ->check(CLI::Range(0.3, 3.0));
 
   std::string renderCase, renderResolution = "coarse";
   orthosim::cli::RenderCommandOptions renderOptions;
@@ -256,6 +262,12 @@ int main(int argc, char** argv) {
   serve->add_flag("!--no-warm-up", serveOptions.warmUp, "Do not build the phantom's coarse model at start");
   serve->add_option("--max-upload-mb", serveOptions.maxUploadMb, "Largest patient upload (POST /api/patients), MiB")
       ->check(CLI::Range(1, 4096));
+  serve
+      ->add_option("--scan-expiry", serveOptions.scanExpirySeconds,
+                   "Seconds a scan staged for import (POST /api/scans) is kept unused before it is removed")
+      ->check(CLI::Range(1, 86400));
+  serve->add_option("--max-staged-scans", serveOptions.maxStagedScans, "Scans staged for import at once")
+      ->check(CLI::Range(1, 64));
   serve->add_option("--redis", serveOptions.redis,
                     "redis://HOST:PORT: fine jobs go to `orthosim worker` processes through Redis Streams "
                     "(default: run them in this process)");
@@ -303,7 +315,7 @@ int main(int argc, char** argv) {
       return orthosim::cli::runPlanFromFace(faceOptions);
     }
     if (bench.chosen()) return bench.run();
-    if (*phantom) return orthosim::cli::runPhantom(phantomVariant, phantomOut);
+    if (*phantom) return orthosim::cli::runPhantom(phantomVariant, phantomOut, phantomCt, phantomCtSpacing);
     if (*import) {
       for (std::size_t at = 0; at < importCuts.size();) {
         const std::size_t comma = std::min(importCuts.find(',', at), importCuts.size());

@@ -13,6 +13,7 @@ namespace orthosim {
 namespace {
 
 constexpr double kSkinHu = -400, kBoneHu = 300;
+constexpr double kMetalHu = 2900;    // above enamel (2500 and up), below a 12-bit scanner's saturation (3071)
 constexpr double kMinAirMm3 = 1000;  // air pockets smaller than 1 cm3 stay tissue
 constexpr double kSeedReachMm = 5;   // a seed this close to the bone is moved onto it
 constexpr int kBorderClearance = 2;  // voxels of tissue kept between a bone and a cropped side
@@ -48,6 +49,7 @@ void chooseThresholds(const CtVolume& grey, const CtSegmentationOptions& o, CtSe
       if (v > s.skinThreshold) tissue.push_back(v);
     s.boneThreshold = otsuThreshold(tissue, s.skinThreshold, quantile(tissue, 0.999));
   }
+  s.metalLevel = hu ? kMetalHu : s.boneThreshold + 6 * (s.boneThreshold - s.skinThreshold);
   s.thresholdSource = o.skinThreshold && o.boneThreshold ? "given"
                       : hu                               ? "Hounsfield units (air/tissue -400, bone 300)"
                            : "the histogram (grey values not in Hounsfield units, as in CBCT)";
@@ -148,8 +150,7 @@ CtSegmentation segmentCt(const CtVolume& volume, const CtSegmentationOptions& op
   VoxelMask bone = above(grey, s.boneThreshold);
   for (size_t n = 0; n < bone.on.size(); ++n) bone.on[n] = bone.on[n] && inside.on[n];
   clearBorder(bone, kBorderClearance);
-  const double metal = s.boneThreshold + 6 * (s.boneThreshold - s.skinThreshold);
-  for (size_t n = 0; n < volume.values.size(); ++n) s.metalVoxels += volume.values[n] > metal;
+  for (size_t n = 0; n < volume.values.size(); ++n) s.metalVoxels += volume.values[n] > s.metalLevel;
   const auto [skullSeed, mandibleSeed] = seeds(grey, bone, options, s);
   BoneSplit split = splitBones(grey, bone, skullSeed, mandibleSeed);
   const VoxelMask skull = holesFilled(largestComponent(split.skull));

@@ -36,7 +36,8 @@ struct CtSegmentation {
   std::string thresholdSource;                  // "Hounsfield defaults", "given", "histogram (CBCT)"
   Eigen::Vector3d mandibleSeed = Eigen::Vector3d::Zero(), skullSeed = Eigen::Vector3d::Zero();  // used
   int splitErosions = 0;           // erosions needed to part the mandible from the skull
-  long metalVoxels = 0;            // voxels above the metal level (fillings, brackets), left out of the bone
+  double metalLevel = 0;           // grey value above which a voxel is metal (fillings, brackets)
+  long metalVoxels = 0;            // voxels above it, for the user; they stay in the tooth they are in
   std::vector<std::string> notes;  // what was done and found, for the user
 };
 

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "cases/Identifier.hpp"
+#include "cases/ScanFiles.hpp"
 #include "mesh/TemporaryName.hpp"
 
 namespace orthosim::server {
@@ -23,7 +24,9 @@ const std::map<std::string, std::vector<std::string>>& fieldEndings() {
       {"label_map", {".nii", ".nii.gz", ".nrrd"}},  // one file: a detached .nhdr header would need two
       {"cavity", {".stl", ".obj", ".ply"}},
       {"texture", {".png", ".jpg", ".jpeg"}},
-      {"landmarks", {".json"}}};
+      {"landmarks", {".json"}},
+      {"dicom", {}},  // a scan's files, often without an ending; their names are made safe, not checked
+      {"dicom_zip", {".zip"}}};
   return endings;
 }
 
@@ -54,7 +57,8 @@ void checkFileName(const UploadedFile& f) {
   }
 }
 
-void checkUpload(const PatientUpload& u, const CaseLibrary& cases, const fs::path& out) {
+// `staged`: a scan staged before (the staged-scan routes), whose files are not in the upload.
+void checkUpload(const PatientUpload& u, const CaseLibrary& cases, const fs::path& out, bool staged = false) {
   if (!isIdentifier(u.id))
     throw PatientImportError("bad_name", "id",
                              "id: '" + u.id + "' is not a case identifier (1-64 letters, digits, '_' or '-', no path)");
@@ -71,7 +75,11 @@ void checkUpload(const PatientUpload& u, const CaseLibrary& cases, const fs::pat
       throw PatientImportError("bad_field", f.field,
                                f.field +
                                    ": no such file field (skin, skull, mandible, label_map, cavity, "
-                                   "texture, landmarks)");
+                                   "texture, landmarks, dicom, dicom_zip)");
+    if (f.field == "dicom") {  // a folder's files: staged under safe names (cases/ScanFiles)
+      ++count[f.field];
+      continue;
+    }
     checkFileName(f);
     std::string key = f.fileName;
     std::transform(key.begin(), key.end(), key.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -83,6 +91,25 @@ void checkUpload(const PatientUpload& u, const CaseLibrary& cases, const fs::pat
       throw PatientImportError("bad_file", f.field, f.field + ": more than one file; send one");
     if (f.data.empty()) throw PatientImportError("bad_file", f.field, f.fileName + ": the file is empty");
   }
+  if (staged || count.count("dicom") || count.count("dicom_zip")) {
+    const char* scanField = count.count("dicom") ? "dicom" : "dicom_zip";
+    if (count.count("dicom") && count.count("dicom_zip"))
+      throw PatientImportError("bad_file", "dicom_zip", "dicom_zip: send either the scan's files or a .zip, not both");
+    for (const char* other : {"skin", "skull", "mandible", "label_map", "cavity", "texture"})
+      if (count.count(other))
+        throw PatientImportError("bad_file", other,
+                                 std::string(other) + ": send either a DICOM scan (" + scanField + ") or the " +
+                                     (std::string(other) == "label_map" ? "label map" : "surfaces") + ", not both");
+    for (const auto& [labels, field] : {std::pair{&u.tissueLabels, "tissue_labels"},
+                                        {&u.skullLabels, "skull_labels"},
+                                        {&u.mandibleLabels, "mandible_labels"}})
+      if (!labels->empty())
+        throw PatientImportError("bad_field", field, std::string(field) + ": label numbers need a label map");
+    return;
+  }
+  if (!u.scan.empty())
+    throw PatientImportError("bad_field", !u.scan.series.empty() ? "series" : "skin_threshold",
+                             "series, thresholds and seeds are for a DICOM scan (dicom or dicom_zip)");
   if (count.count("label_map")) {
     for (const char* surface : {"skin", "skull", "mandible"})
       if (count.count(surface))
@@ -108,12 +135,6 @@ void checkUpload(const PatientUpload& u, const CaseLibrary& cases, const fs::pat
                                    " surface is needed (STL, OBJ or PLY), or a label map instead of the three");
 }
 
-// Messages of the engine's importer name files by their staged paths: show the user's names.
-std::string withoutFolder(std::string message, const std::string& folder) {
-  for (std::size_t at; (at = message.find(folder)) != std::string::npos;) message.erase(at, folder.size());
-  return message;
-}
-
 // The staging folder is removed on every way out.
 struct StagingFolder {
   fs::path path;
@@ -124,6 +145,36 @@ struct StagingFolder {
 };
 
 }  // namespace
+
+// Messages of the engine's importer name files by their staged paths: show the user's names.
+std::string withoutFolder(std::string message, const std::string& folder, const std::string& with) {
+  if (folder.empty()) return message;
+  for (std::size_t at = 0; (at = message.find(folder, at)) != std::string::npos; at += with.size())
+    message.replace(at, folder.size(), with);
+  return message;
+}
+
+std::string chooseSeries(const fs::path& folder, const std::string& requested, std::vector<DicomSeriesInfo>* out) {
+  std::vector<DicomSeriesInfo> series;
+  try {
+    series = listDicomSeries(folder.string());
+  } catch (const DicomError& e) {
+    throw PatientImportError("bad_scan", "", withoutFolder(e.what(), folder.string(), "the scan"));
+  }
+  if (out) *out = series;
+  if (!requested.empty()) {
+    std::string uids;
+    for (const DicomSeriesInfo& s : series) {
+      if (s.uid == requested) return requested;
+      uids += (uids.empty() ? "" : ", ") + s.uid;
+    }
+    throw PatientImportError("bad_field", "series", "series: '" + requested + "' is not in the scan; it holds " + uids);
+  }
+  if (series.size() > 1)
+    throw PatientImportError("several_series", "series",
+                             "series: the scan holds " + std::to_string(series.size()) + " series; choose one", series);
+  return series.at(0).uid;
+}
 
 bool isUploadField(const std::string& field) { return fieldEndings().count(field) > 0; }
 
@@ -144,6 +195,20 @@ ImportedPatient PatientImporter::import(const PatientUpload& upload) {
   input.tissueLabels = upload.tissueLabels;
   input.skullLabels = upload.skullLabels;
   input.mandibleLabels = upload.mandibleLabels;
+  const bool scan = std::any_of(upload.files.begin(), upload.files.end(),
+                                [](const UploadedFile& f) { return f.field == "dicom" || f.field == "dicom_zip"; });
+  if (scan) {
+    const fs::path series = staging.path / "series";
+    for (const UploadedFile& f : upload.files)
+      if (f.field == "dicom_zip") {
+        const fs::path zip = staging.path / "scan.zip";
+        std::ofstream(zip, std::ios::binary).write(f.data.data(), static_cast<std::streamsize>(f.data.size()));
+        unpackScanZip(zip, series);
+        fs::remove(zip);
+      }
+    if (!fs::exists(series)) stageScanFiles(upload.files, series);
+    return importScanIn(upload, input, out, series);
+  }
   for (const UploadedFile& f : upload.files) {
     const fs::path file = staging.path / f.fileName;
     std::ofstream(file, std::ios::binary).write(f.data.data(), static_cast<std::streamsize>(f.data.size()));
@@ -157,13 +222,46 @@ ImportedPatient PatientImporter::import(const PatientUpload& upload) {
     if (f.field == "texture") input.texture = file.string();
     if (f.field == "landmarks") input.landmarks = file.string();
   }
+  return importChecked(upload, input, out, staging.path.string() + "/", "");
+}
+
+ImportedPatient PatientImporter::importScan(const PatientUpload& upload, const fs::path& folder) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const fs::path out = dataDir_ / "patients" / upload.id;
+  checkUpload(upload, cases_, out, true);
+  fs::create_directories(out.parent_path());
+  CaseImportInput input;
+  input.oralCavity = upload.oralCavity;
+  input.cuts = upload.cuts;
+  input.name = upload.name.empty() ? upload.id : upload.name;
+  return importScanIn(upload, input, out, folder);
+}
+
+ImportedPatient PatientImporter::importScanIn(const PatientUpload& upload, CaseImportInput& input, const fs::path& out,
+                                              const fs::path& series) {
+  input.dicom = series.string();
+  input.dicomSeries = chooseSeries(series, upload.scan.series);
+  input.segmentation = upload.scan.segmentation();
+  for (const UploadedFile& f : upload.files)  // landmarks may come with a scan
+    if (f.field == "landmarks") {
+      const fs::path file = series.parent_path() / ("landmarks-" + safeBaseName(f.fileName));
+      std::ofstream(file, std::ios::binary).write(f.data.data(), static_cast<std::streamsize>(f.data.size()));
+      input.landmarks = file.string();
+    }
+  return importChecked(upload, input, out, series.string(), "the scan");
+}
+
+ImportedPatient PatientImporter::importChecked(const PatientUpload& upload, CaseImportInput& input, const fs::path& out,
+                                               const std::string& folder, const std::string& folderName) {
   ImportedPatient imported;
   try {
     imported.report = importCase(input, out.string());
   } catch (const std::exception& e) {  // the importer's checks (CaseImportError) and the case file's
-    throw PatientImportError("import_failed", "", withoutFolder(e.what(), staging.path.string() + "/"));
+    throw PatientImportError("import_failed", "", withoutFolder(e.what(), folder, folderName));
   }
-  for (std::string& w : imported.report.warnings) w = withoutFolder(w, staging.path.string() + "/");
+  for (std::vector<std::string>* lines :
+       {&imported.report.warnings, &imported.report.scan, &imported.report.built, &imported.report.suggested})
+    for (std::string& line : *lines) line = withoutFolder(line, folder, folderName);
   imported.entry.id = upload.id;
   imported.entry.name = input.name;
   imported.entry.description = "imported patient " + upload.id;

@@ -11,12 +11,14 @@
 #include <vector>
 
 #include "cases/CaseLibrary.hpp"
+#include "cases/ScanChoice.hpp"
 #include "scene/CaseImport.hpp"
+#include "volume/DicomSeries.hpp"
 
 namespace orthosim::server {
 
 struct UploadedFile {
-  std::string field;     // skin, skull, mandible, label_map, cavity, texture or landmarks
+  std::string field;     // skin, skull, mandible, label_map, cavity, texture, landmarks, dicom or dicom_zip
   std::string fileName;  // as the user's machine named it
   std::string data;
 };
@@ -30,6 +32,9 @@ struct PatientUpload {
   std::vector<UploadedFile> files;
   // With a label_map file instead of the three surfaces: the labels of each tissue in it.
   std::vector<int> tissueLabels, skullLabels, mandibleLabels;
+  // Or a CT or CBCT scan: its files (field dicom, many) or one .zip (dicom_zip), read and segmented
+  // as `scan` says.
+  ScanChoice scan;
 };
 
 struct ImportedPatient {
@@ -38,13 +43,25 @@ struct ImportedPatient {
 };
 
 // What is wrong with an upload: `code` is stable for clients (bad_name, case_exists, bad_file,
-// missing_file, bad_field, import_failed), `field` the form field at fault (may be empty).
+// missing_file, bad_field, import_failed; for scans bad_zip, bad_scan, several_series,
+// segmentation_failed, unknown_scan, too_many_scans), `field` the form field at fault (may be empty).
 struct PatientImportError : std::runtime_error {
-  PatientImportError(std::string code, std::string field, const std::string& message)
-      : std::runtime_error(message), code(std::move(code)), field(std::move(field)) {}
+  PatientImportError(std::string code, std::string field, const std::string& message,
+                     std::vector<DicomSeriesInfo> series = {})
+      : std::runtime_error(message), code(std::move(code)), field(std::move(field)), series(std::move(series)) {}
   std::string code;
   std::string field;
+  std::vector<DicomSeriesInfo> series;  // several_series: the scan's, to choose from
 };
+
+// The series of the scan staged in `folder` to read: `requested` when the scan holds it, its only
+// series when none is requested. Throws PatientImportError: bad_scan (no DICOM image), several_series
+// (listing them), bad_field series (a UID the scan does not hold).
+std::string chooseSeries(const std::filesystem::path& folder, const std::string& requested,
+                         std::vector<DicomSeriesInfo>* series = nullptr);
+
+// Replaces every `folder` in an engine's message (staged paths the user never saw) by `with`.
+std::string withoutFolder(std::string message, const std::string& folder, const std::string& with = "");
 
 // The fields a file may come in, and the file name endings each takes.
 bool isUploadField(const std::string& field);
@@ -55,6 +72,8 @@ class PatientImporter {
 
   // Checks, imports and adds the case; one import at a time. Throws PatientImportError.
   ImportedPatient import(const PatientUpload& upload);
+  // The same for a scan staged in `folder` (by the staged-scan routes); upload.files is not used.
+  ImportedPatient importScan(const PatientUpload& upload, const std::filesystem::path& folder);
 
   // The patients imported before (<data>/patients/<id>/case.json), for the catalog at start, and
   // those imported since through another replica sharing the folder (`known`: ids to leave out,
@@ -63,6 +82,11 @@ class PatientImporter {
                                          const std::function<bool(const std::string&)>& known = {});
 
  private:
+  ImportedPatient importScanIn(const PatientUpload& upload, CaseImportInput& input, const std::filesystem::path& out,
+                               const std::filesystem::path& series);
+  ImportedPatient importChecked(const PatientUpload& upload, CaseImportInput& input, const std::filesystem::path& out,
+                                const std::string& folder, const std::string& folderName);
+
   std::filesystem::path dataDir_;
   CaseLibrary& cases_;
   std::mutex mutex_;

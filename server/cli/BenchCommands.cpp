@@ -36,6 +36,7 @@ BenchCommands::BenchCommands(CLI::App& app) {
   addCohort();
   addBandCohort();
   addFace();
+  addScan();
 }
 
 void BenchCommands::addBlocks() {
@@ -171,6 +172,15 @@ void BenchCommands::addFace() {
   addJson(face_, faceOptions_.jsonPath);
 }
 
+void BenchCommands::addScan() {
+  scan_ = bench_->add_subcommand("scan", "Time a CT series (the phantom scanned) to a plannable case and its preview");
+  scan_->add_option("--size", scanOptions_.size, "The CT's voxels i j k (default 512 512 300)")
+      ->expected(3)
+      ->check(CLI::Range(32, 1024));
+  addRepeats(scan_, scanOptions_.repeats, "Runs (medians reported)");
+  addJson(scan_, scanOptions_.jsonPath);
+}
+
 int BenchCommands::run() const {
   if (blocks_->parsed()) return runBench(blocksOptions_);
   if (phantom_->parsed()) return runCaseBench(phantomOptions_);
@@ -185,6 +195,7 @@ int BenchCommands::run() const {
   if (cohort_->parsed()) return runCohortBench(cohortOptions_);
   if (bandCohort_->parsed()) return runBandCohortBench(bandCohortOptions_);
   if (face_->parsed()) return runFaceBench(faceOptions_);
+  if (scan_->parsed()) return runScanBench(scanOptions_);
   return 1;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // `orthosim bench MODE`: one subcommand per benchmark (blocks, phantom, case, latency, render,
-// cohort), each with only its own options.
+// cohort, scan), each with only its own options.
 #include <CLI/CLI.hpp>
 
 #include "cli/Commands.hpp"
@@ -29,10 +29,11 @@ class BenchCommands {
   void addCohort();
   void addBandCohort();
   void addFace();
+  void addScan();
 
   CLI::App* bench_ = nullptr;
   CLI::App *blocks_ = nullptr, *phantom_ = nullptr, *case_ = nullptr, *latency_ = nullptr, *render_ = nullptr,
-           *cohort_ = nullptr, *sessions_ = nullptr, *bandCohort_ = nullptr, *face_ = nullptr;
+           *cohort_ = nullptr, *sessions_ = nullptr, *bandCohort_ = nullptr, *face_ = nullptr, *scan_ = nullptr;
   BenchOptions blocksOptions_;
   CaseBenchOptions phantomOptions_, caseOptions_;
   LatencyBenchOptions latencyOptions_;
@@ -41,6 +42,7 @@ class BenchCommands {
   CohortBenchOptions cohortOptions_;
   BandCohortBenchOptions bandCohortOptions_;
   FaceBenchOptions faceOptions_;
+  ScanBenchOptions scanOptions_;
 };
 
 }  // namespace orthosim::cli

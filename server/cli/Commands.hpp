@@ -29,6 +29,13 @@ struct BenchOptions {
 };
 int runBench(const BenchOptions& options);
 
+struct ScanBenchOptions {
+  std::vector<int> size = {512, 512, 300};  // the phantom CT's voxels
+  int repeats = 3;
+  std::string jsonPath;
+};
+int runScanBench(const ScanBenchOptions& options);
+
 struct CaseBenchOptions {
   std::string casePath;  // empty: the phantom
   int phantomVariant = 0;
@@ -146,7 +153,9 @@ struct FaceBenchOptions {
 int runFaceBench(const FaceBenchOptions& options);
 
 // Writes the built-in phantom head (variant N) as a surface-based case under outDir.
-int runPhantom(int variant, const std::string& outDir);
+// With `ctDir`: also the phantom as a CT's DICOM series there (phantom/PhantomCt.hpp), voxels of
+// `ctSpacing` mm (0: a head CT's 0.5 x 0.5 x 1).
+int runPhantom(int variant, const std::string& outDir, const std::string& ctDir = "", double ctSpacing = 0);
 
 // Writes the imported case; 0 when written, 1 with the file and defect named on stderr otherwise.
 int runImport(const CaseImportInput& input, const std::string& outDir);
@@ -195,6 +204,8 @@ struct ServeOptions {
   int previewIterations = 100;       // what one preview may spend (server::PlanningOptions)
   double previewSeconds = 15;
   int maxUploadMb = 256;         // a patient's upload from the page (net::HttpLimits::uploadBytes)
+  int scanExpirySeconds = 1800;  // a scan staged for import (POST /api/scans) is removed when unused this long
+  int maxStagedScans = 3;        // scans staged at once
   std::string redis;             // "redis://HOST:PORT": fine jobs on `orthosim worker` processes; empty: in process
   std::string replica;           // with redis: this server's name there (default <host>-<port>; none for port 0)
   int orphanGraceSeconds = 120;  // with redis: a job whose session is gone waits this long to be resumed

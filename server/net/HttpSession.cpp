@@ -4,6 +4,7 @@
 
 #include "net/JsonResponses.hpp"
 #include "net/PatientUploadRoute.hpp"
+#include "net/ScanRoutes.hpp"
 
 namespace orthosim::net {
 namespace beast = boost::beast;
@@ -14,7 +15,7 @@ constexpr std::size_t kMaxDrainBytes = 1024 * 1024;
 constexpr std::chrono::seconds kDrainTimeout{2};
 
 // The reply to a request the parser rejected, or nullopt when the connection just ended.
-// `upload`: the request is a patient's upload, which has its own body limit.
+// `upload`: the request is an upload (a patient's, a scan's), which has its own body limit.
 std::optional<StringResponse> parseErrorReply(beast::error_code ec, const HttpLimits& limits, bool upload) {
   const ReplyTo to{11, false, false};
   if (ec == http::error::body_limit)
@@ -56,7 +57,7 @@ void HttpSession::readRequest() {
 
 void HttpSession::onHeader(beast::error_code ec, std::size_t bytes) {
   if (ec) return onRead(ec, bytes);
-  if (isPatientUpload(parser_->get())) {
+  if (isPatientUpload(parser_->get()) || isScanUpload(parser_->get())) {
     if (std::optional<StringResponse> refusal = context_->router->refuseUpload(parser_->get()))
       return send(std::move(*refusal), true);
     stream_.expires_after(limits_.uploadTimeout);
@@ -76,12 +77,14 @@ void HttpSession::onRead(beast::error_code ec, std::size_t) {
     return;
   }
   if (ec) {
-    const bool upload = isPatientUpload(parser_->get());  // the request line is parsed first
+    // The request line is parsed first.
+    const bool upload = isPatientUpload(parser_->get()) || isScanUpload(parser_->get());
     if (std::optional<StringResponse> reply = parseErrorReply(ec, limits_, upload)) send(std::move(*reply), true);
     return;  // otherwise the session ends here and its socket closes
   }
   if (websocket::is_upgrade(parser_->get())) return upgrade();
   if (isPatientUpload(parser_->get())) return importPatient();
+  if (isScanUpload(parser_->get()) || isScanRoute(parser_->get())) return scanRequest();
   Response response = context_->router->handle(parser_->get());
   const bool closeAfter = std::visit([](const auto& r) { return r.need_eof(); }, response);
   send(std::move(response), closeAfter);
@@ -95,6 +98,24 @@ void HttpSession::importPatient() {
       self->send(std::move(response), !keepAlive);
     });
   });
+}
+
+void HttpSession::scanRequest() {
+  // The staged-scan routes change state like the upload: the same checks (Host, Origin, token).
+  if (std::optional<StringResponse> refusal = context_->router->refuseUpload(parser_->get()))
+    return send(std::move(*refusal), true);
+  const bool keepAlive = parser_->get().keep_alive();
+  const bool upload = isScanUpload(parser_->get());
+  auto self = shared_from_this();
+  auto reply = [self, keepAlive](StringResponse response) {
+    boost::asio::dispatch(self->stream_.get_executor(), [self, keepAlive, response = std::move(response)]() mutable {
+      self->send(std::move(response), !keepAlive);
+    });
+  };
+  if (upload)
+    net::stageScan(*context_->planning, parser_->release(), std::move(reply));
+  else
+    net::scanRoute(*context_->planning, parser_->release(), std::move(reply));
 }
 
 void HttpSession::upgrade() {

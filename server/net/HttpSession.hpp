@@ -25,6 +25,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void onHeader(boost::beast::error_code ec, std::size_t bytes);
   void onRead(boost::beast::error_code ec, std::size_t bytes);
   void importPatient();
+  void scanRequest();  // /api/scans and /api/scans/<token>/...: answered on the import pool
   void upgrade();
   void send(Response&& response, bool closeAfter);
   void onWrite(bool closeAfter, boost::beast::error_code ec, std::size_t bytes);

@@ -6,20 +6,10 @@
 #include "cases/Identifier.hpp"
 #include "net/JsonResponses.hpp"
 #include "net/RequestTarget.hpp"
+#include "net/ScanRoutes.hpp"
 
 namespace orthosim::net {
 namespace {
-
-StringResponse uploadError(http::status status, const std::string& code, const std::string& field,
-                           const std::string& message, const ReplyTo& to) {
-  nlohmann::json body = {{"error", code}, {"message", message}, {"path", kPatientsPath}};
-  if (!field.empty()) body["field"] = field;
-  return jsonResponse(status, body, to);
-}
-
-http::status statusOf(const std::string& code) {
-  return code == "case_exists" ? http::status::conflict : http::status::bad_request;
-}
 
 std::vector<std::string> commaList(const std::string& s) {
   std::vector<std::string> out;
@@ -82,6 +72,8 @@ server::PatientUpload patientUploadFromForm(const std::vector<FormPart>& parts) 
       upload.oralCavity = p.data;
     } else if (p.name == "cuts") {
       for (const std::string& cut : commaList(p.data)) upload.cuts.push_back(cut);
+    } else if (server::isScanChoiceField(p.name)) {
+      server::setScanChoiceField(upload.scan, p.name, p.data);
     } else if (p.name == "tissue_labels" || p.name == "skull_labels" || p.name == "mandible_labels") {
       std::vector<int>& labels = p.name == "tissue_labels"  ? upload.tissueLabels
                                  : p.name == "skull_labels" ? upload.skullLabels
@@ -92,7 +84,8 @@ server::PatientUpload patientUploadFromForm(const std::vector<FormPart>& parts) 
           "bad_field", p.name,
           p.name +
               ": no such field (id, name, units, oral_cavity, cuts, skin, skull, mandible, label_map, "
-              "tissue_labels, skull_labels, mandible_labels, cavity, texture, landmarks)");
+              "tissue_labels, skull_labels, mandible_labels, cavity, texture, landmarks, dicom, dicom_zip, series, "
+              "skin_threshold, bone_threshold, mandible_seed, skull_seed)");
     }
   }
   // A browser sends an empty part for a file input left empty: that is no file.
@@ -110,20 +103,13 @@ void importPatient(server::PlanningService& service, Request request, std::funct
           parseMultipartForm(request.body(), formBoundary(std::string_view(request[http::field::content_type].data(),
                                                                            request[http::field::content_type].size())));
       const server::ImportedPatient imported = service.patients().import(patientUploadFromForm(parts));
-      nlohmann::json body = server::casesJson({imported.entry})["cases"][0];
-      done(jsonResponse(http::status::created,
-                        {{"case", body},
-                         {"scale", imported.report.scale},
-                         {"frame", imported.report.frame},
-                         {"warnings", imported.report.warnings},
-                         {"built", imported.report.built}},
-                        to));
+      done(jsonResponse(http::status::created, importedJson(imported), to));
     } catch (const FormError& e) {
-      done(uploadError(http::status::bad_request, "bad_form", "", e.what(), to));
+      done(jsonError(http::status::bad_request, "bad_form", e.what(), kPatientsPath, to));
     } catch (const server::PatientImportError& e) {
-      done(uploadError(statusOf(e.code), e.code, e.field, e.what(), to));
+      done(importErrorReply(e, kPatientsPath, to));
     } catch (const std::exception& e) {
-      done(uploadError(http::status::internal_server_error, "import_failed", "", e.what(), to));
+      done(jsonError(http::status::internal_server_error, "import_failed", e.what(), kPatientsPath, to));
     }
   });
 }

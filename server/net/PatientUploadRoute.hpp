@@ -1,9 +1,11 @@
 #pragma once
 // POST /api/patients: the page's "New patient" form (multipart/form-data: the fields id, name,
-// units, cuts and the files skin, skull, mandible, cavity..., texture, landmarks) imported as a new
-// case (server/cases/PatientImport). The only HTTP route that changes state: it takes files, which
-// the WebSocket's message limit would not. Its body may be as large as HttpLimits::uploadBytes;
-// Host, token and Origin are checked on the headers, before any of the body is read.
+// units, cuts and the files skin, skull, mandible, cavity..., texture, landmarks, or a CT scan's
+// dicom files or dicom_zip with series, thresholds and seeds) imported as a new case
+// (server/cases/PatientImport). With net/ScanRoutes, the only HTTP routes that change state: they
+// take files, which the WebSocket's message limit would not. Its body may be as large as
+// HttpLimits::uploadBytes; Host, token and Origin are checked on the headers, before any of the
+// body is read.
 #include <functional>
 #include <vector>
 
@@ -22,8 +24,8 @@ bool isPatientUpload(const Request& request);
 server::PatientUpload patientUploadFromForm(const std::vector<FormPart>& parts);
 
 // Parses the form, imports on the service's import pool and calls `done` there with the reply:
-// 201 {"case": {...as in /api/cases}, "scale", "frame", "warnings"}, or 400 / 409 / 415 with
-// {"error", "message", "path", "field"}.
+// 201 {"case": {...as in /api/cases}, "scale", "frame", "warnings", "built", "scan", "suggested"}, or
+// 400 / 409 / 415 with {"error", "message", "path", "field", "series" (several_series)}.
 void importPatient(server::PlanningService& service, Request request, std::function<void(StringResponse)> done);
 
 }  // namespace orthosim::net

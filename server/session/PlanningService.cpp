@@ -17,6 +17,7 @@ PlanningService::PlanningService(PlanningOptions options)
       localJobs_(options_.fineWorkers, options_.fineQueue, /*niceness=*/10),
       plans_(options_.dataDir / "plans"),
       patients_(options_.dataDir, cases_),
+      scans_(options_.dataDir, patients_, options_.scanExpiry, options_.maxStagedScans),
       previewPool_(static_cast<std::size_t>(std::max(1, options_.previewThreads))) {
   // Leftovers are removed only by a process that has the folder to itself: another replica or a
   // worker may be writing what looks like one.

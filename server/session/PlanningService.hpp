@@ -13,6 +13,7 @@
 
 #include "cases/CaseLibrary.hpp"
 #include "cases/PatientImport.hpp"
+#include "cases/ScanStore.hpp"
 #include "jobs/FineJobs.hpp"
 #include "session/AnatomicalPose.hpp"
 #include "session/DataFolderLock.hpp"
@@ -42,6 +43,10 @@ struct PlanningOptions {
   // last good preview kept, and no session holds a preview thread for minutes.
   int previewIterations = 100;
   std::chrono::milliseconds previewTime{15000};
+  // CT scans staged for the page's import (cases/ScanStore): removed when unused this long; at most
+  // this many at once (each holds its files on disk and its volume in memory).
+  std::chrono::seconds scanExpiry{1800};
+  int maxStagedScans = 3;
 };
 
 class PlanningService {
@@ -63,6 +68,7 @@ class PlanningService {
   bool redisJobs() const { return redisJobs_; }
   PlanStore& plans() { return plans_; }
   PatientImporter& patients() { return patients_; }
+  ScanStore& scans() { return scans_; }
   // Imports run here, one at a time, off the network threads (checking a patient's surfaces takes
   // seconds).
   boost::asio::thread_pool& importPool() { return importPool_; }
@@ -92,6 +98,7 @@ class PlanningService {
   PlanStore plans_;
   ExportStore exports_;
   PatientImporter patients_;
+  ScanStore scans_;
   std::atomic<int> sessions_{0};
   // Last, so destroyed first: work they still hold may end a session, which uses the members above.
   boost::asio::thread_pool previewPool_;

@@ -14,7 +14,7 @@ allowed() {
     physics) echo "mesh math" ;;
     volume) echo "mesh math" ;;
     scene) echo "mesh volume math" ;;
-    phantom) echo "mesh image math" ;;
+    phantom) echo "mesh image volume math" ;;
     contact) echo "mesh scene math" ;;
     solver) echo "mesh physics scene contact math" ;;
     eval) echo "mesh physics scene contact solver phantom math" ;;

@@ -8,11 +8,14 @@
 #include <filesystem>
 #include <iostream>
 
-#include "PhantomCt.hpp"
 #include "mesh/LabelMapSurfaces.hpp"
 #include "mesh/SurfaceDistance.hpp"
+#include "mesh/SurfacePrimitives.hpp"
+#include "phantom/PhantomCase.hpp"
+#include "phantom/PhantomCt.hpp"
 #include "volume/CtSegmentation.hpp"
 #include "volume/GreyThresholds.hpp"
+#include "volume/SyntheticCt.hpp"
 #include "volume/VoxelMask.hpp"
 
 namespace orthosim {
@@ -25,7 +28,7 @@ class PhantomSegmentation : public ::testing::Test {
     dir_ = new fs::path(fs::temp_directory_path() / ("orthosim_ct_segmentation_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     writePhantomCase(0, (*dir_ / "phantom").string());
-    scan_ = new test::PhantomCt(test::phantomCt(*dir_ / "phantom"));
+    scan_ = new PhantomCt(phantomCt((*dir_ / "phantom").string()));
     seg_ = new CtSegmentation(segmentCt(scan_->ct));
     for (const auto& n : seg_->notes) std::cout << "segmentation: " << n << "\n";
   }
@@ -42,11 +45,11 @@ class PhantomSegmentation : public ::testing::Test {
         {{"skin", s.labels.labels(), true}, {"skull", {C::kSkull}, false}, {"mandible", {C::kMandible}, false}});
   }
   static fs::path* dir_;
-  static test::PhantomCt* scan_;
+  static PhantomCt* scan_;
   static CtSegmentation* seg_;
 };
 fs::path* PhantomSegmentation::dir_ = nullptr;
-test::PhantomCt* PhantomSegmentation::scan_ = nullptr;
+PhantomCt* PhantomSegmentation::scan_ = nullptr;
 CtSegmentation* PhantomSegmentation::seg_ = nullptr;
 
 // Distances from `found`'s vertices to `truth`: their median and 95th percentile.
@@ -76,6 +79,40 @@ TEST_F(PhantomSegmentation, SurfacesLieWithinAVoxelOfThePhantoms) {
     // The teeth's large surface for their volume: a quarter voxel of partial volume is some 7 percent.
     EXPECT_NEAR(std::abs(found[s].signedVolume()) / std::abs(truth[s]->signedVolume()), 1.0, 0.1) << names[s];
   }
+}
+
+// The filling's streak (bright and dark bands across the mouth, in the slice of the upper molars)
+// leaves no fin of false bone: no vertex of either bone lies more than 1.5 voxels from the phantom's.
+TEST_F(PhantomSegmentation, TheMetalStreakLeavesNoFalseBone) {
+  const std::vector<SurfaceMesh> found = surfaces(*seg_);
+  const SurfaceMesh* truth[] = {&scan_->skull, &scan_->mandible};
+  for (int b = 0; b < 2; ++b) {
+    const Eigen::VectorXd d = distancesToSurface(truth[b]->vertices, truth[b]->triangles, found[b + 1].vertices);
+    std::cout << (b ? "mandible" : "skull") << ": farthest vertex " << d.maxCoeff() << " mm from the phantom's\n";
+    EXPECT_LT(d.maxCoeff(), 1.5) << (b ? "mandible" : "skull");
+  }
+}
+
+// Air inside the face (here a pocket of 8 mm radius in the soft tissue of the neck, as a pharynx
+// gives) becomes the air label, a voxel inside its wall; none is found where the phantom has none.
+TEST_F(PhantomSegmentation, AirInsideTheFaceIsFound) {
+  EXPECT_EQ(std::count(seg_->labels.voxels.begin(), seg_->labels.voxels.end(), int(CtSegmentation::kAir)), 0);
+  const Eigen::Vector3d centre = phantomToLps() * Eigen::Vector3d(-30, 0, -85);
+  const SurfaceMesh pocket = makeIcosphere(8.0, 3, centre);
+  for (const SurfaceMesh* bone : {&scan_->skull, &scan_->mandible})  // the pocket lies in soft tissue
+    ASSERT_GT(distancesToSurface(bone->vertices, bone->triangles, Eigen::Matrix3Xd(centre))[0], 12.0);
+  ASSERT_GT(distancesToSurface(scan_->skin.vertices, scan_->skin.triangles, Eigen::Matrix3Xd(centre))[0], 12.0);
+  SyntheticCtInput in;
+  in.grid = scan_->ct;
+  in.layers = {{&scan_->skin, 40.f}, {&pocket, -1000.f}, {&scan_->skull, 1200.f}, {&scan_->mandible, 1200.f}};
+  const CtSegmentation s = segmentCt(syntheticCt(in));
+  const double voxel = std::abs(s.labels.directions.determinant());
+  const double air =
+      voxel * double(std::count(s.labels.voxels.begin(), s.labels.voxels.end(), int(CtSegmentation::kAir)));
+  const double whole = 4.0 / 3.0 * M_PI * 8 * 8 * 8, inner = 4.0 / 3.0 * M_PI * 7 * 7 * 7;
+  std::cout << "air found: " << air << " mm3 (pocket " << whole << ", a voxel inside it " << inner << ")\n";
+  EXPECT_GT(air, 0.8 * inner);
+  EXPECT_LT(air, whole);
 }
 
 // The teeth are 0.7 mm apart and the joints close: the split leaves every mandible vertex nearer

@@ -10,10 +10,11 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "PhantomCt.hpp"
 #include "contact/RigidSurface.hpp"
 #include "eval/SkinPoint.hpp"
 #include "mesh/SurfaceImport.hpp"
+#include "phantom/PhantomCase.hpp"
+#include "phantom/PhantomCt.hpp"
 #include "scene/CaseImport.hpp"
 #include "scene/CaseModel.hpp"
 #include "solver/PlanSolver.hpp"
@@ -29,7 +30,7 @@ class DicomImport : public ::testing::Test {
     dir_ = new fs::path(fs::temp_directory_path() / ("orthosim_dicom_import_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     writePhantomCase(0, (*dir_ / "phantom").string());
-    scan_ = new test::PhantomCt(test::phantomCt(*dir_ / "phantom"));
+    scan_ = new PhantomCt(phantomCt((*dir_ / "phantom").string()));
     writeDicomSeries(scan_->ct, (*dir_ / "series").string());
     CaseImportInput in;
     in.dicom = (*dir_ / "series").string();
@@ -47,11 +48,11 @@ class DicomImport : public ::testing::Test {
     delete dir_;
   }
   static fs::path* dir_;
-  static test::PhantomCt* scan_;
+  static PhantomCt* scan_;
   static CaseImportReport* report_;
 };
 fs::path* DicomImport::dir_ = nullptr;
-test::PhantomCt* DicomImport::scan_ = nullptr;
+PhantomCt* DicomImport::scan_ = nullptr;
 CaseImportReport* DicomImport::report_ = nullptr;
 
 TEST_F(DicomImport, TheSeriesBecomesACaseWithItsReportAndSuggestedLandmarks) {
@@ -104,7 +105,7 @@ TEST_F(DicomImport, ALeFortPreviewMovesTheLipsAsThePhantomsCase) {
   exact.skin = (phantomDir / "skin.obj").string();
   exact.skull = (phantomDir / "skull.stl").string();
   SurfaceMesh mandible = importSurface((phantomDir / "mandible.stl").string());
-  mandible.vertices.row(2).array() += test::kOcclusionRaiseMm;
+  mandible.vertices.row(2).array() += kPhantomOcclusionRaiseMm;
   exact.mandible = (*dir_ / "mandible_in_occlusion.stl").string();
   exportSurface(mandible, exact.mandible);
   exact.landmarks = (phantomDir / "landmarks.json").string();
@@ -125,13 +126,13 @@ TEST_F(DicomImport, ALeFortPreviewMovesTheLipsAsThePhantomsCase) {
   FragmentMotion advance;
   advance.translation = Eigen::Vector3d(-5, 0, 0);  // the phantom's anterior
   phantom.plan = surfaces.plan = {{"maxilla", advance}};
-  advance.translation = test::phantomToLps() * advance.translation;
+  advance.translation = phantomToLps() * advance.translation;
   scan.plan = suggested.plan = {{"maxilla", advance}};
   const CaseModel phantomModel = buildCaseModel(phantom, Resolution::Coarse, {ORTHOSIM_TEST_CACHE_DIR});
   const CaseModel surfaceModel = buildCaseModel(surfaces, Resolution::Coarse);
   const CaseModel scanModel = buildCaseModel(scan, Resolution::Coarse);
   const CaseModel suggestedModel = buildCaseModel(suggested, Resolution::Coarse);
-  const Eigen::Matrix3d toLps = test::phantomToLps();
+  const Eigen::Matrix3d toLps = phantomToLps();
   for (const char* lip : {"labrale_superius", "labrale_inferius", "subnasale"}) {
     const Eigen::Vector3d own = toLps * skinMove(phantomModel, phantom.landmarks.at(lip));
     const Eigen::Vector3d same = toLps * skinMove(surfaceModel, phantom.landmarks.at(lip));
@@ -146,16 +147,18 @@ TEST_F(DicomImport, ALeFortPreviewMovesTheLipsAsThePhantomsCase) {
 }
 
 // A series that is not CT is refused naming what it is, and nothing is left behind.
-TEST_F(DicomImport, ARefusedSeriesLeavesNothingBehind) {
+TEST(DicomImportRefusal, ARefusedSeriesLeavesNothingBehind) {
+  const fs::path dir = fs::temp_directory_path() / ("orthosim_dicom_refusal_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
   CtVolume small;
   small.size = Eigen::Vector3i(16, 16, 8);
   small.values.assign(size_t(small.count()), 100.f);
   DicomWriteOptions mr;
   mr.modality = "MR";
-  writeDicomSeries(small, (*dir_ / "mr").string(), mr);
+  writeDicomSeries(small, (dir / "mr").string(), mr);
   CaseImportInput in;
-  in.dicom = (*dir_ / "mr").string();
-  const fs::path out = *dir_ / "refused" / "case";
+  in.dicom = (dir / "mr").string();
+  const fs::path out = dir / "refused" / "case";
   fs::create_directories(out.parent_path());
   try {
     importCase(in, out.string());
@@ -164,6 +167,7 @@ TEST_F(DicomImport, ARefusedSeriesLeavesNothingBehind) {
     EXPECT_NE(std::string(e.what()).find("MR"), std::string::npos) << e.what();
   }
   EXPECT_TRUE(fs::is_empty(out.parent_path()));
+  fs::remove_all(dir);
 }
 
 }  // namespace
