@@ -137,8 +137,12 @@ Sources readScan(const CaseImportInput& in) {
   try {
     DicomReadOptions options;
     options.seriesUid = in.dicomSeries;
-    const CtVolume volume = readDicomSeries(in.dicom, options, &read);
-    seg = segmentCt(volume, in.segmentation);
+    if (in.scanVolume && in.scanRead) {
+      read = *in.scanRead;
+      seg = segmentCt(*in.scanVolume, in.segmentation);
+    } else {
+      seg = segmentCt(readDicomSeries(in.dicom, options, &read), in.segmentation);
+    }
   } catch (const DicomError& e) {
     throw CaseImportError(e.what());
   } catch (const std::invalid_argument& e) {

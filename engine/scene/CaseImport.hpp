@@ -6,12 +6,14 @@
 // manifold, self-intersection, bones inside the skin) and every problem comes back naming the file
 // and what is wrong; the case folder is written complete or not at all.
 #include <Eigen/Core>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "volume/CtSegmentation.hpp"
+#include "volume/DicomSeries.hpp"
 
 namespace orthosim {
 
@@ -30,6 +32,10 @@ struct CaseImportInput {
   std::string dicom;
   std::string dicomSeries;
   CtSegmentationOptions segmentation;
+  // The series already read (a live check of the segmentation keeps it), with its read report:
+  // used instead of reading `dicom` again.
+  std::shared_ptr<const CtVolume> scanVolume;
+  std::shared_ptr<const DicomReadReport> scanRead;
   std::vector<std::string> cavities;  // closed air spaces inside the skin (e.g. the oral cavity)
   // With no cavity given, "auto" builds the oral cavity a scan with closed lips and teeth in
   // occlusion lacks (scene/OralCavity); "none" leaves the tissue between the jaws whole.

@@ -225,7 +225,9 @@ ImportedPatient PatientImporter::import(const PatientUpload& upload) {
   return importChecked(upload, input, out, staging.path.string() + "/", "");
 }
 
-ImportedPatient PatientImporter::importScan(const PatientUpload& upload, const fs::path& folder) {
+ImportedPatient PatientImporter::importScan(const PatientUpload& upload, const fs::path& folder,
+                                            std::shared_ptr<const CtVolume> volume,
+                                            std::shared_ptr<const DicomReadReport> read) {
   const std::lock_guard<std::mutex> lock(mutex_);
   const fs::path out = dataDir_ / "patients" / upload.id;
   checkUpload(upload, cases_, out, true);
@@ -234,6 +236,8 @@ ImportedPatient PatientImporter::importScan(const PatientUpload& upload, const f
   input.oralCavity = upload.oralCavity;
   input.cuts = upload.cuts;
   input.name = upload.name.empty() ? upload.id : upload.name;
+  input.scanVolume = std::move(volume);
+  input.scanRead = std::move(read);
   return importScanIn(upload, input, out, folder);
 }
 

@@ -73,7 +73,9 @@ class PatientImporter {
   // Checks, imports and adds the case; one import at a time. Throws PatientImportError.
   ImportedPatient import(const PatientUpload& upload);
   // The same for a scan staged in `folder` (by the staged-scan routes); upload.files is not used.
-  ImportedPatient importScan(const PatientUpload& upload, const std::filesystem::path& folder);
+  ImportedPatient importScan(const PatientUpload& upload, const std::filesystem::path& folder,
+                             std::shared_ptr<const CtVolume> volume = nullptr,
+                             std::shared_ptr<const DicomReadReport> read = nullptr);
 
   // The patients imported before (<data>/patients/<id>/case.json), for the catalog at start, and
   // those imported since through another replica sharing the folder (`known`: ids to leave out,

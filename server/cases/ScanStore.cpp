@@ -203,12 +203,19 @@ ImportedPatient ScanStore::importScan(const std::string& token, const PatientUpl
   const std::shared_ptr<Scan> scan = acquire(token);
   ImportedPatient imported;
   try {
+    std::shared_ptr<const CtVolume> volume;
+    std::shared_ptr<const DicomReadReport> read;
     {
       const std::lock_guard<std::mutex> lock(mutex_);
-      scan->volume.reset();  // the importer reads the series itself
+      // The series the live check read is not read again, when it is the one imported.
+      if (scan->volume && (upload.scan.series.empty() || upload.scan.series == scan->volumeSeries)) {
+        volume = scan->volume;
+        read = std::make_shared<const DicomReadReport>(scan->read);
+      }
+      scan->volume.reset();
       scan->volumeSeries.clear();
     }
-    imported = importer_.importScan(upload, scan->folder / "series");
+    imported = importer_.importScan(upload, scan->folder / "series", volume, read);
   } catch (...) {
     release(scan);
     throw;
