@@ -239,11 +239,23 @@ async function importScan() {
   };
   const started = Date.now();
   const working = $("scan-working");
+  let stage = "starting";
   const tick = () => {
-    working.textContent = `reading the series, segmenting, meshing the surfaces, suggesting landmarks… ${Math.round((Date.now() - started) / 1000)} s`;
+    working.textContent = `${stage}… ${Math.round((Date.now() - started) / 1000)} s`;
+  };
+  // The import's stage, asked for beside it (GET answers at once).
+  const poll = async () => {
+    try {
+      const response = await fetch(`/api/scans/${scan.token}`, { headers: authHeaders({}) });
+      if (response.ok) {
+        const now = await response.json();
+        if (typeof now.stage === "string" && now.stage) stage = now.stage;
+      }
+    } catch (e) { /* the import's own reply says what went wrong */ }
+    tick();
   };
   tick();
-  const ticker = setInterval(tick, 1000);
+  const ticker = setInterval(poll, 700);
   working.hidden = false;
   $("import-scan").disabled = true;
   scanStatus("importing: this takes a minute for a full scan");

@@ -30,6 +30,10 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+void stage(const CaseImportInput& in, const char* what) {
+  if (in.progress) in.progress(what);
+}
+
 // A bone may touch the skin (a thin chin), not pass through it.
 constexpr double kOutsideTolerance = 0.5;  // mm
 
@@ -139,9 +143,13 @@ Sources readScan(const CaseImportInput& in) {
     options.seriesUid = in.dicomSeries;
     if (in.scanVolume && in.scanRead) {
       read = *in.scanRead;
+      stage(in, "segmenting");
       seg = segmentCt(*in.scanVolume, in.segmentation);
     } else {
-      seg = segmentCt(readDicomSeries(in.dicom, options, &read), in.segmentation);
+      stage(in, "reading the series");
+      const CtVolume volume = readDicomSeries(in.dicom, options, &read);
+      stage(in, "segmenting");
+      seg = segmentCt(volume, in.segmentation);
     }
   } catch (const DicomError& e) {
     throw CaseImportError(e.what());
@@ -159,6 +167,7 @@ Sources readScan(const CaseImportInput& in) {
   if (air) regions.push_back({"air", {C::kAir}, false});
   try {
     seg.labels.path = in.dicom;
+    stage(in, "making the surfaces");
     const std::vector<SurfaceMesh> surfaces = labelMapSurfaces(seg.labels, regions);
     s.skin = surfaces[0];
     s.skull = surfaces[1];
@@ -444,6 +453,7 @@ json suggested(const SurfaceMesh& skin, const SurfaceMesh& skull, const SurfaceM
 void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir, double scale,
                  CaseImportReport& report) {
   std::vector<std::string>& w = report.warnings;
+  stage(in, "checking and repairing the surfaces");
   const SurfaceMesh skin = checked(std::move(sources.skin), sources.skinName, scale, SurfaceRole::Skin, w);
   const SurfaceMesh skull = checked(std::move(sources.skull), sources.skullName, scale, SurfaceRole::Bone, w);
   const SurfaceMesh mandible = checked(std::move(sources.mandible), sources.mandibleName, scale, SurfaceRole::Bone, w);
@@ -478,6 +488,7 @@ void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir
     cavities.push_back(file);
   }
   const std::optional<AnatomicalFrame> frame = caseFrame(in, fromLandmarks, sources.fromLabelMap);
+  stage(in, "placing the landmarks and the oral cavity");
   if (in.landmarks.empty()) landmarks = suggested(skin, skull, mandible, frame.value_or(AnatomicalFrame()), report);
   const Landmarks flat = flatten(landmarks);
   const std::optional<SurfaceMesh> oral =
@@ -493,6 +504,7 @@ void writeFolder(const CaseImportInput& in, Sources sources, const fs::path& dir
     exportSurface(cavity, (dir / file).string());
     cavities.push_back(file);
   }
+  stage(in, "writing the case");
   exportSurface(skin, (dir / "skin.obj").string());  // OBJ keeps the texture coordinates
   exportSurface(skull, (dir / "skull.stl").string());
   exportSurface(mandible, (dir / "mandible.stl").string());

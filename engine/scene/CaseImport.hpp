@@ -6,6 +6,7 @@
 // manifold, self-intersection, bones inside the skin) and every problem comes back naming the file
 // and what is wrong; the case folder is written complete or not at all.
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -36,6 +37,9 @@ struct CaseImportInput {
   // used instead of reading `dicom` again.
   std::shared_ptr<const CtVolume> scanVolume;
   std::shared_ptr<const DicomReadReport> scanRead;
+  // Told each stage as it begins ("reading the series", "segmenting", ..., "writing the case"), for
+  // a page or terminal to show while an import of a scan takes its tens of seconds.
+  std::function<void(const std::string& stage)> progress;
   std::vector<std::string> cavities;  // closed air spaces inside the skin (e.g. the oral cavity)
   // With no cavity given, "auto" builds the oral cavity a scan with closed lips and teeth in
   // occlusion lacks (scene/OralCavity); "none" leaves the tissue between the jaws whole.

@@ -227,7 +227,8 @@ ImportedPatient PatientImporter::import(const PatientUpload& upload) {
 
 ImportedPatient PatientImporter::importScan(const PatientUpload& upload, const fs::path& folder,
                                             std::shared_ptr<const CtVolume> volume,
-                                            std::shared_ptr<const DicomReadReport> read) {
+                                            std::shared_ptr<const DicomReadReport> read,
+                                            std::function<void(const std::string&)> progress) {
   const std::lock_guard<std::mutex> lock(mutex_);
   const fs::path out = dataDir_ / "patients" / upload.id;
   checkUpload(upload, cases_, out, true);
@@ -238,6 +239,7 @@ ImportedPatient PatientImporter::importScan(const PatientUpload& upload, const f
   input.name = upload.name.empty() ? upload.id : upload.name;
   input.scanVolume = std::move(volume);
   input.scanRead = std::move(read);
+  input.progress = std::move(progress);
   return importScanIn(upload, input, out, folder);
 }
 

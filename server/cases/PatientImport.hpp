@@ -5,6 +5,7 @@
 // are staged in <data>/imports/<id>.upload-<host>-<pid>-<random>/ under their own names (so that every message
 // names the file the user chose) and removed whatever happens.
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -75,7 +76,8 @@ class PatientImporter {
   // The same for a scan staged in `folder` (by the staged-scan routes); upload.files is not used.
   ImportedPatient importScan(const PatientUpload& upload, const std::filesystem::path& folder,
                              std::shared_ptr<const CtVolume> volume = nullptr,
-                             std::shared_ptr<const DicomReadReport> read = nullptr);
+                             std::shared_ptr<const DicomReadReport> read = nullptr,
+                             std::function<void(const std::string&)> progress = nullptr);
 
   // The patients imported before (<data>/patients/<id>/case.json), for the catalog at start, and
   // those imported since through another replica sharing the folder (`known`: ids to leave out,

@@ -214,9 +214,18 @@ ImportedPatient ScanStore::importScan(const std::string& token, const PatientUpl
       }
       scan->volume.reset();
       scan->volumeSeries.clear();
+      scan->importStarted = std::chrono::steady_clock::now();
     }
-    imported = importer_.importScan(upload, scan->folder / "series", volume, read);
+    const auto progress = [this, scan](const std::string& stage) {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      scan->stage = stage;
+    };
+    imported = importer_.importScan(upload, scan->folder / "series", volume, read, progress);
   } catch (...) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      scan->stage.clear();
+    }
     release(scan);
     throw;
   }
@@ -225,6 +234,17 @@ ImportedPatient ScanStore::importScan(const std::string& token, const PatientUpl
   scans_.erase(token);
   removeFolder(scan->folder);
   return imported;
+}
+
+std::optional<ScanStore::Status> ScanStore::status(const std::string& token) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = scans_.find(token);
+  if (it == scans_.end()) return std::nullopt;
+  Status out;
+  out.stage = it->second->stage;
+  if (!out.stage.empty())
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - it->second->importStarted).count();
+  return out;
 }
 
 bool ScanStore::discard(const std::string& token) {

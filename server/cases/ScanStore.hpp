@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,13 @@ class ScanStore {
   ImportedPatient importScan(const std::string& token, const PatientUpload& upload);
   // Removes a staged scan; false when there was none.
   bool discard(const std::string& token);
+  // What an import of the scan is doing ("" when none is under way) and for how long it has; none
+  // for an unknown token. Answers at once, beside a running import.
+  struct Status {
+    std::string stage;
+    double seconds = 0;
+  };
+  std::optional<Status> status(const std::string& token);
 
   std::size_t staged();
   std::chrono::seconds expiry() const { return expiry_; }
@@ -68,6 +76,8 @@ class ScanStore {
     std::string volumeSeries;
     std::shared_ptr<const CtVolume> volume;
     DicomReadReport read;
+    std::string stage;  // of the import under way
+    std::chrono::steady_clock::time_point importStarted;
   };
   std::shared_ptr<Scan> acquire(const std::string& token);
   void release(const std::shared_ptr<Scan>& scan);

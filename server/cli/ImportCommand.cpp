@@ -3,6 +3,8 @@
 // as a case folder (scene/CaseImport), checked file by file. `--label-map F --tissue-labels 1
 // --skull-labels 2 --mandible-labels 3` takes one label map instead of the three surfaces, `--dicom
 // DIR [--series UID]` a CT or CBCT series, segmented here. Without --landmarks they are suggested.
+#include <chrono>
+#include <iomanip>
 #include <iostream>
 
 #include "cli/Commands.hpp"
@@ -10,7 +12,13 @@
 
 namespace orthosim::cli {
 
-int runImport(const CaseImportInput& input, const std::string& outDir) {
+int runImport(const CaseImportInput& given, const std::string& outDir) {
+  CaseImportInput input = given;
+  const auto started = std::chrono::steady_clock::now();
+  input.progress = [&](const std::string& stage) {  // a scan takes tens of seconds: say what it is doing
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    std::cout << "[" << std::fixed << std::setprecision(1) << s << " s] " << stage << "\n" << std::flush;
+  };
   try {
     const CaseImportReport report = importCase(input, outDir);
     if (!report.labelMap.empty()) std::cout << report.labelMap << "\n";

@@ -230,7 +230,24 @@ void stageScan(server::PlanningService& service, Request request, std::function<
   });
 }
 
+// GET /api/scans/<token>: the stage of the import under way, answered here and at once (not
+// behind the import on the import pool), so that the page can show it while it waits.
+bool scanStatus(server::PlanningService& service, const Request& request, std::function<void(StringResponse)>& done) {
+  if (request.method() != http::verb::get) return false;
+  const ReplyTo to = replyTo(request);
+  const std::string path = pathOf(request).value_or("");
+  const std::string token = path.substr(std::min(path.size(), std::string(kScansPath).size() + 1));
+  const std::optional<server::ScanStore::Status> status =
+      isHexToken(token) ? service.scans().status(token) : std::nullopt;
+  if (!status)
+    done(jsonError(http::status::not_found, "unknown_scan", "no staged scan with this token", path, to));
+  else
+    done(jsonResponse(http::status::ok, {{"stage", status->stage}, {"seconds", status->seconds}}, to));
+  return true;
+}
+
 void scanRoute(server::PlanningService& service, Request request, std::function<void(StringResponse)> done) {
+  if (scanStatus(service, request, done)) return;
   boost::asio::post(service.importPool(), [&service, request = std::move(request), done = std::move(done)] {
     const ReplyTo to = replyTo(request);
     const std::string path = pathOf(request).value_or("");
@@ -257,7 +274,7 @@ void scanRoute(server::PlanningService& service, Request request, std::function<
       }
       if (action == "preview" || action == "import" || action.empty())
         return done(jsonError(http::status::method_not_allowed, "method_not_allowed",
-                              std::string(action.empty() ? "DELETE" : "POST") + " only", path, to));
+                              std::string(action.empty() ? "GET or DELETE" : "POST") + " only", path, to));
       done(jsonError(http::status::not_found, "not_found", "no such route", path, to));
     } catch (const server::PatientImportError& e) {
       done(importErrorReply(e, path, to));

@@ -25,9 +25,9 @@ beast::tcp_stream connect(boost::asio::io_context& io, unsigned short port) {
 // operations (a blocking read with SO_RCVTIMEO does not give up either: asio waits again).
 template <class Parser>
 beast::error_code readReply(boost::asio::io_context& io, beast::tcp_stream& stream, beast::flat_buffer& buffer,
-                            Parser& parser) {
+                            Parser& parser, std::chrono::seconds silence = kSilence) {
   beast::error_code result;
-  stream.expires_after(kSilence);
+  stream.expires_after(silence);
   http::async_read(stream, buffer, parser, [&](beast::error_code ec, std::size_t) { result = ec; });
   io.restart();
   io.run();
@@ -52,7 +52,7 @@ HttpReply httpRequest(unsigned short port, http::verb method, const std::string&
   return parser.release();
 }
 
-std::vector<HttpReply> httpRaw(unsigned short port, const std::string& bytes) {
+std::vector<HttpReply> httpRaw(unsigned short port, const std::string& bytes, std::chrono::seconds silence) {
   boost::asio::io_context io;
   beast::tcp_stream stream = connect(io, port);
   boost::asio::write(stream, boost::asio::buffer(bytes));
@@ -60,7 +60,7 @@ std::vector<HttpReply> httpRaw(unsigned short port, const std::string& bytes) {
   beast::flat_buffer buffer;
   for (;;) {
     http::response_parser<http::string_body> parser;
-    const beast::error_code ec = readReply(io, stream, buffer, parser);
+    const beast::error_code ec = readReply(io, stream, buffer, parser, silence);
     if (ec == http::error::end_of_stream && !replies.empty()) break;  // server closed after its last reply
     if (ec) throw boost::system::system_error(ec, "reading reply " + std::to_string(replies.size() + 1));
     replies.push_back(parser.release());

@@ -1,6 +1,7 @@
 #pragma once
 // A small blocking HTTP client over a real socket to 127.0.0.1, for the server tests.
 #include <boost/beast/http.hpp>
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -16,7 +17,9 @@ inline HttpReply httpGet(unsigned short port, const std::string& target) {
 }
 
 // Writes `bytes` as they are (any requests, well-formed or not), then reads replies until the
-// server closes the connection (at most 10 s of silence). Throws when no reply arrives.
-std::vector<HttpReply> httpRaw(unsigned short port, const std::string& bytes);
+// server closes the connection (at most `silence` without a byte: a scan's import takes longer
+// than the usual 10 s). Throws when no reply arrives.
+std::vector<HttpReply> httpRaw(unsigned short port, const std::string& bytes,
+                               std::chrono::seconds silence = std::chrono::seconds(10));
 
 }  // namespace orthosim::test

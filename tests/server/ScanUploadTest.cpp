@@ -8,7 +8,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <future>
+#include <iostream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -52,19 +55,21 @@ std::string multipart(const std::string& path, const std::vector<Part>& parts) {
          boundary + "\r\nContent-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
 }
 
-test::HttpReply send(unsigned short port, const std::string& raw) {
-  const std::vector<test::HttpReply> replies = test::httpRaw(port, raw);
+test::HttpReply send(unsigned short port, const std::string& raw, std::chrono::seconds silence = 10s) {
+  const std::vector<test::HttpReply> replies = test::httpRaw(port, raw, silence);
   if (replies.size() != 1) throw std::runtime_error("expected one reply, got " + std::to_string(replies.size()));
   return replies[0];
 }
 
 test::HttpReply postJson(unsigned short port, const std::string& path, const json& body,
-                         const std::string& method = "POST") {
+                         const std::string& method = "POST", std::chrono::seconds silence = 10s) {
   const std::string text = body.dump();
-  return send(port, method + " " + path +
-                        " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\nContent-Type: application/json\r\n"
-                        "Content-Length: " +
-                        std::to_string(text.size()) + "\r\n\r\n" + text);
+  return send(port,
+              method + " " + path +
+                  " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\nContent-Type: application/json\r\n"
+                  "Content-Length: " +
+                  std::to_string(text.size()) + "\r\n\r\n" + text,
+              silence);
 }
 
 // A toy head at 2 mm voxels: a block of soft tissue holding the skull above (a dense core in a
@@ -159,7 +164,7 @@ class ScanUpload : public ::testing::Test {
     return entries;
   }
   json stage(unsigned short port, const std::vector<Part>& parts, http::status expected = http::status::created) {
-    const test::HttpReply reply = send(port, multipart("/api/scans", parts));
+    const test::HttpReply reply = send(port, multipart("/api/scans", parts), 120s);  // reads a CT series
     EXPECT_EQ(reply.result(), expected) << reply.body();
     return json::parse(reply.body());
   }
@@ -378,7 +383,8 @@ TEST_F(ScanUpload, ThePhantomsCtBecomesACaseWithSuggestedLandmarks) {
     parts.push_back({"dicom", "ct/" + e.path().filename().string(), readFile(e.path())});
   test::ServerProcess server(serverArgs({"--max-upload-mb", "1024"}));
   const std::string token = stage(server.port(), parts)["token"];
-  const test::HttpReply preview = postJson(server.port(), "/api/scans/" + token + "/preview", json::object());
+  const test::HttpReply preview =
+      postJson(server.port(), "/api/scans/" + token + "/preview", json::object(), "POST", 120s);  // segments it
   ASSERT_EQ(preview.result(), http::status::ok) << preview.body().substr(0, 1000);
   const json p = json::parse(preview.body());
   EXPECT_NE(p["images"][0]["placed"].get<std::string>().find("occlusal"), std::string::npos)
@@ -386,11 +392,26 @@ TEST_F(ScanUpload, ThePhantomsCtBecomesACaseWithSuggestedLandmarks) {
   EXPECT_GT(p["images"][0]["pixels"]["mandible"].get<long>(), 0);
   EXPECT_GT(p["images"][0]["pixels"]["skull"].get<long>(), 0);
 
-  const test::HttpReply imported = postJson(server.port(), "/api/scans/" + token + "/import",
-                                            {{"id", "ct-patient"},
-                                             {"name", "CT patient"},
-                                             {"cuts", "le_fort_1,bsso"},
-                                             {"bone_threshold", p["bone_threshold"]}});
+  auto importing = std::async(std::launch::async, [&] {
+    return postJson(server.port(), "/api/scans/" + token + "/import",
+                    {{"id", "ct-patient"},
+                     {"name", "CT patient"},
+                     {"cuts", "le_fort_1,bsso"},
+                     {"bone_threshold", p["bone_threshold"]}},
+                    "POST", 300s);  // a scan's import takes tens of seconds
+  });
+  // Beside the import, its stage is answered at once.
+  std::set<std::string> stages;
+  while (importing.wait_for(200ms) != std::future_status::ready) {
+    const test::HttpReply status = test::httpGet(server.port(), "/api/scans/" + token);
+    if (status.result() != http::status::ok) continue;  // before the import begins, or after it ends
+    const json j = json::parse(status.body());
+    if (!j["stage"].get<std::string>().empty()) stages.insert(j["stage"].get<std::string>());
+  }
+  for (const std::string& s : stages) std::cout << "stage: " << s << "\n";
+  EXPECT_TRUE(stages.count("segmenting") || stages.count("making the surfaces")) << stages.size();
+  EXPECT_TRUE(stages.count("checking and repairing the surfaces")) << stages.size();
+  const test::HttpReply imported = importing.get();
   ASSERT_EQ(imported.result(), http::status::created) << imported.body();
   const json r = json::parse(imported.body());
   EXPECT_EQ(r["case"]["id"], "ct-patient");

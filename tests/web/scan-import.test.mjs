@@ -66,6 +66,9 @@ test("scan import: stage a CT folder, preview, change the bone threshold, import
       await page.fill('input[aria-label="scan patient name"]', "CT Jane");
       await page.click("#import-scan");
       assert.equal(await page.locator("#scan-working").isHidden(), false, "the import says it is working");
+      // The stage the server reports, not only the time: the import makes and checks surfaces for seconds.
+      await page.waitForFunction(() => /making the surfaces|checking and repairing|placing the landmarks|writing the case/
+        .test(document.querySelector("#scan-working").textContent), null, { timeout: 120000 });
       await page.waitForFunction(() => /Suggested landmarks/.test(document.querySelector("#scan-report").textContent), null, { timeout: 300000 })
         .catch(async (e) => { console.log("scan-status:", await page.locator("#scan-status").textContent()); throw e; });
       const report = await page.locator("#scan-report").textContent();
