@@ -19,6 +19,7 @@
 #include "mesh/TemporaryName.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/LandmarkFrame.hpp"
+#include "scene/LandmarkName.hpp"
 #include "scene/MouthGeometry.hpp"
 #include "scene/OralCavity.hpp"
 #include "scene/Osteotomy.hpp"
@@ -261,7 +262,12 @@ json readLandmarks(const std::string& path, double scale) {
   }
   const auto scaled = [&](json group, const std::string& at) {
     if (!group.is_object()) throw CaseImportError(path + at + ": must be an object of name: [x, y, z]");
+    int n = 0;
     for (auto& [name, p] : group.items()) {
+      ++n;
+      if (!isLandmarkName(name))
+        throw CaseImportError(path + at + ": landmark " + std::to_string(n) +
+                              "'s name is not 1-64 letters, digits, _ or - (rename it in the file)");
       if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() || !p[2].is_number())
         throw CaseImportError(path + at + "." + name + ": must be [x, y, z]");
       for (auto& c : p) c = c.get<double>() * scale;

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "cases/CaseEdit.hpp"
-#include "cases/Identifier.hpp"
+#include "scene/LandmarkName.hpp"
 #include "session/PlanningSession.hpp"
 
 namespace orthosim::server {
@@ -16,7 +16,7 @@ Landmarks readLandmarks(const MessageReader& r, const json& j) {
   Landmarks out;
   for (const auto& [name, value] : j.items()) {
     const std::string where = "/landmarks/" + name;
-    if (!isIdentifier(name)) r.fail("bad_value", where + ": a landmark name is 1-64 letters, digits, _ or -", where);
+    if (!isLandmarkName(name)) r.fail("bad_value", where + ": a landmark name is 1-64 letters, digits, _ or -", where);
     if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
         !value[2].is_number())
       r.fail("bad_value", where + ": must be [x, y, z] in mm", where);

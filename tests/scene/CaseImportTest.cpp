@@ -154,6 +154,13 @@ TEST_F(CaseImport, EachDefectIsNamedWithItsFile) {
   m = refusal(in, dir_ / "d");
   EXPECT_NE(m.find("bad_landmarks.json.stomion: must be [x, y, z]"), std::string::npos) << m;
 
+  in = phantomInput();  // a name that would be markup on the page is refused where it enters
+  in.landmarks = (dir_ / "markup_landmarks.json").string();
+  std::ofstream(in.landmarks) << R"({"soft": {"<img src=x onerror=alert(1)>": [1, 2, 3]}})";
+  m = refusal(in, dir_ / "d2");
+  EXPECT_NE(m.find("markup_landmarks.json: soft: landmark 1's name is not 1-64 letters"), std::string::npos) << m;
+  EXPECT_EQ(m.find("<img"), std::string::npos) << m;
+
   in = phantomInput();
   in.cuts = {"genioplasty"};
   in.landmarks = (dir_ / "few_landmarks.json").string();  // the template needs landmarks the file lacks

@@ -268,6 +268,11 @@ TEST_F(PatientUpload, EditingLandmarksAndCutsRebuildsTheCaseWithProgress) {
     EXPECT_EQ(refused["error"], "edit_failed");
     EXPECT_NE(refused["message"].get<std::string>().find("le_fort_3"), std::string::npos) << refused.dump();
     EXPECT_EQ(readFile(data_ / "patients" / "edit-me" / "case.json"), before);
+    // Refused: a landmark name that would be markup on the page (the import's rule too).
+    const json markup = ws.request({{"type", "edit_case"}, {"landmarks", {{"<img src=x>", {1, 2, 3}}}}});
+    EXPECT_EQ(markup["type"], "error") << markup.dump();
+    EXPECT_NE(markup["message"].get<std::string>().find("a landmark name is 1-64"), std::string::npos) << markup.dump();
+    EXPECT_EQ(readFile(data_ / "patients" / "edit-me" / "case.json"), before);
 
     // Accepted: nasion 1 mm up, Le Fort I 2 mm above its default level (4 mm), BSSO kept.
     ws.send({{"type", "edit_case"},
