@@ -10,20 +10,38 @@ const face = { landmarks: [], fitting: false };
 
 function faceLabel(name) { return LANDMARK_NAMES[name] || name.replace(/_/g, " "); }
 
+// An element with attributes and children; text goes in as text, never as markup (names come from
+// users' files).
+function faceEl(tag, attrs = {}, children = []) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) {
+    if (v === true) e.setAttribute(k, "");
+    else if (v !== false && v !== undefined) e.setAttribute(k, String(v));
+  }
+  for (const c of children) e.append(c);
+  return e;
+}
+
+function faceTargetRow(name) {
+  const cells = FACE_AXES.map(([key, label]) => faceEl("td", {}, [faceEl("input", {
+    type: "number", step: "0.5", min: "-50", max: "50", value: "0", "data-landmark": name, "data-axis": key,
+    "aria-label": `${name} target ${label}`, disabled: true,
+  })]));
+  const box = faceEl("input", { type: "checkbox", "data-target": name, "aria-label": `target ${name}` });
+  box.onchange = () => enableTarget(name, box.checked);
+  const weight = faceEl("input", {
+    type: "number", step: "0.5", min: "0.001", max: "1000", value: "1", "data-weight": name,
+    "aria-label": `${name} weight`, disabled: true,
+  });
+  return faceEl("tr", {}, [faceEl("td", {}, [faceEl("label", {}, [box, ` ${faceLabel(name)}`])]), ...cells,
+    faceEl("td", {}, [weight]), faceEl("td", { class: "miss", "data-miss": name })]);
+}
+
 function showFaceTargets(m) {
   face.landmarks = m.face_landmarks || [];
   $("face-targets").hidden = face.landmarks.length === 0;
-  const rows = face.landmarks.map((name) => {
-    const cells = FACE_AXES.map(([key, label]) =>
-      `<td><input type="number" step="0.5" min="-50" max="50" value="0" data-landmark="${name}" data-axis="${key}" aria-label="${name} target ${label}" disabled></td>`).join("");
-    return `<tr><td><label><input type="checkbox" data-target="${name}" aria-label="target ${name}"> ${faceLabel(name)}</label></td>${cells}` +
-      `<td><input type="number" step="0.5" min="0.001" max="1000" value="1" data-weight="${name}" aria-label="${name} weight" disabled></td>` +
-      `<td class="miss" data-miss="${name}"></td></tr>`;
-  }).join("");
-  $("face-target-table").innerHTML =
-    `<tr><th>landmark</th><th>forward</th><th>up</th><th>right</th><th>weight</th><th>miss</th></tr>${rows}`;
-  for (const box of document.querySelectorAll("#face-target-table input[data-target]"))
-    box.onchange = () => enableTarget(box.dataset.target, box.checked);
+  const head = faceEl("tr", {}, ["landmark", "forward", "up", "right", "weight", "miss"].map((h) => faceEl("th", {}, [h])));
+  $("face-target-table").replaceChildren(head, ...face.landmarks.map(faceTargetRow));
   renderFaceLocks(m.fragments || []);
   $("face-status").textContent = "";
 }
@@ -41,11 +59,14 @@ function enableTarget(name, on) {
 function renderFaceLocks(fragments) {
   const rows = fragments.map((f) => {
     const locked = /^ramus/.test(f.name);
-    const boxes = AXES.map((a) =>
-      `<label title="${a.label}"><input type="checkbox" data-lock="${f.name}" data-axis="${a.key}" ${locked ? "checked" : ""} aria-label="lock ${f.name} ${a.key}">${a.key.replace(/_(mm|deg)$/, "")}</label>`).join(" ");
-    return `<div class="lock-row"><span>${f.name.replace(/_/g, " ")}</span> ${boxes}</div>`;
-  }).join("");
-  $("face-locks").innerHTML = rows;
+    const boxes = AXES.map((a) => faceEl("label", { title: a.label }, [faceEl("input", {
+      type: "checkbox", "data-lock": f.name, "data-axis": a.key, checked: locked, "aria-label": `lock ${f.name} ${a.key}`,
+    }), a.key.replace(/_(mm|deg)$/, "")]));
+    const parts = [faceEl("span", {}, [f.name.replace(/_/g, " ")])];
+    for (const box of boxes) parts.push(" ", box);
+    return faceEl("div", { class: "lock-row" }, parts);
+  });
+  $("face-locks").replaceChildren(...rows);
 }
 
 function faceRequest() {
