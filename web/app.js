@@ -188,7 +188,9 @@ function renderFragments() {
     div.dataset.fragment = f.name;
     const head = document.createElement("div");
     head.className = "fragment-head";
-    head.innerHTML = `<span>${f.name.replace(/_/g, " ")}</span>`;
+    const title = document.createElement("span");
+    title.textContent = f.name.replace(/_/g, " ");  // a case file's name: text, never markup
+    head.append(title);
     const reset = document.createElement("button");
     reset.textContent = "reset";
     reset.onclick = () => { for (const a of AXES) state.poses[f.name][a.key] = 0; renderFragments(); posesChanged(); };

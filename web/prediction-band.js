@@ -42,7 +42,8 @@ function onBandDone(m) {
     `${(b.width.share_over_1mm * 100).toFixed(1)}% of the skin over 1 mm.` +
     (failed.length ? ` Left out (did not converge): ${failed.map((r) => r.label).join(", ")}.` : "") +
     ` <b id="band-stale" hidden>This band is of earlier poses: run it again for the current plan.</b>`;
-  let rows = "";
+  const cell = (tag, text) => { const c = document.createElement(tag); c.textContent = text; return c; };
+  const rows = [];
   for (const l of b.landmarks) {
     if (!l.measured) continue;
     const range = (axis) => `${fmt(l.low_mm[axis])} … ${fmt(l.high_mm[axis])}`;
@@ -52,11 +53,16 @@ function onBandDone(m) {
       const e = s.effect_mm[l.name];
       if (e && e.magnitude > best) { best = e.magnitude; most = s.parameter; }
     }
-    rows += `<tr data-landmark="${l.name}"><td>${LANDMARK_NAMES[l.name] || l.name}</td><td>${range("anterior")}</td>` +
-      `<td>${range("superior")}</td><td>${range("right")}</td><td>${most} (${best.toFixed(2)})</td></tr>`;
+    // Names as text, never markup: landmark names come from users' files.
+    const row = document.createElement("tr");
+    row.dataset.landmark = l.name;
+    row.append(cell("td", LANDMARK_NAMES[l.name] || l.name), cell("td", range("anterior")),
+      cell("td", range("superior")), cell("td", range("right")), cell("td", `${most} (${best.toFixed(2)})`));
+    rows.push(row);
   }
-  $("band-table").innerHTML = `<tr><th>landmark (mm about nominal)</th><th>forward</th><th>up</th><th>right</th>` +
-    `<th>moved most by</th></tr>${rows}`;
+  const head = document.createElement("tr");
+  for (const h of ["landmark (mm about nominal)", "forward", "up", "right", "moved most by"]) head.append(cell("th", h));
+  $("band-table").replaceChildren(head, ...rows);
   $("band-flip").hidden = !m.view;
   $("band-export-row").hidden = false;
   if (m.view) {
