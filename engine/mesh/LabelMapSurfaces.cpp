@@ -29,6 +29,8 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "mesh/VtkMessages.hpp"
+
 namespace orthosim {
 namespace {
 
@@ -56,39 +58,6 @@ std::string list(const std::vector<int>& values, size_t most = 20) {
   if (values.size() > most) out += ", ... (" + std::to_string(values.size()) + " in all)";
   return out.empty() ? "none" : out;
 }
-
-// VTK prints some warnings (a short read in vtkImageReader) to the terminal through its output
-// window and logger rather than to the reader's observers: silenced once for the process, as what
-// matters is checked here (the voxels' byte count) and errors reach the observers below.
-void quietVtk() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    vtkOutputWindow::GetInstance()->SetDisplayMode(vtkOutputWindow::NEVER);
-    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-  });
-}
-
-// Collects what VTK reports instead of letting it print to the terminal.
-class VtkMessages {
- public:
-  explicit VtkMessages(vtkObject* source) {
-    callback_->SetClientData(this);
-    callback_->SetCallback([](vtkObject*, unsigned long event, void* self, void* text) {
-      auto* messages = static_cast<VtkMessages*>(self);
-      std::string line = text ? trim(static_cast<const char*>(text)) : std::string();
-      // "ERROR: In .../vtkNrrdReader.cxx, line 123\nvtkNrrdReader (0x...): what": keep "what".
-      const size_t colon = line.find("): ");
-      if (colon != std::string::npos) line = line.substr(colon + 3);
-      (event == vtkCommand::ErrorEvent ? messages->errors : messages->warnings) += (line.empty() ? "" : line + " ");
-    });
-    source->AddObserver(vtkCommand::ErrorEvent, callback_);
-    source->AddObserver(vtkCommand::WarningEvent, callback_);
-  }
-  std::string errors, warnings;
-
- private:
-  Ptr<vtkCallbackCommand> callback_ = Ptr<vtkCallbackCommand>::New();
-};
 
 // The voxels of `image` as whole numbers; throws for fractional values.
 std::vector<int> wholeVoxels(vtkImageData* image, const std::string& path) {

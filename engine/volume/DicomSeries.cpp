@@ -33,6 +33,8 @@
 #include <mutex>
 #include <sstream>
 
+#include "mesh/VtkMessages.hpp"
+
 namespace orthosim {
 namespace {
 
@@ -63,40 +65,6 @@ std::string number(double v, int digits = 3) {
 std::string triple(const Eigen::Vector3d& v, int digits = 3) {
   return "(" + number(v[0], digits) + ", " + number(v[1], digits) + ", " + number(v[2], digits) + ")";
 }
-
-// VTK prints errors and warnings to the terminal through its output window and logger: silenced
-// once for the process; what matters reaches the observers of VtkMessages.
-void quietVtk() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    vtkOutputWindow::GetInstance()->SetDisplayMode(vtkOutputWindow::NEVER);
-    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-  });
-}
-
-// Collects what a VTK object reports, for the DicomError messages.
-class VtkMessages {
- public:
-  explicit VtkMessages(vtkObject* source) {
-    quietVtk();
-    callback_->SetClientData(this);
-    callback_->SetCallback([](vtkObject*, unsigned long event, void* self, void* message) {
-      auto* messages = static_cast<VtkMessages*>(self);
-      std::string line = message ? trim(static_cast<const char*>(message)) : std::string();
-      // "ERROR: In .../vtkDICOMReader.cxx, line 123\nvtkDICOMReader (0x...): what": keep "what".
-      const size_t colon = line.find("): ");
-      if (colon != std::string::npos) line = line.substr(colon + 3);
-      std::string& to = event == vtkCommand::ErrorEvent ? messages->errors : messages->warnings;
-      if (!line.empty() && to.find(line) == std::string::npos) to += (to.empty() ? "" : " ") + line;
-    });
-    source->AddObserver(vtkCommand::ErrorEvent, callback_);
-    source->AddObserver(vtkCommand::WarningEvent, callback_);
-  }
-  std::string errors, warnings;
-
- private:
-  Ptr<vtkCallbackCommand> callback_ = Ptr<vtkCallbackCommand>::New();
-};
 
 // ----------------------------------------------------------------------------------------------
 // Listing
