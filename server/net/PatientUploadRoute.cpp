@@ -99,9 +99,7 @@ void importPatient(server::PlanningService& service, Request request, std::funct
   boost::asio::post(service.importPool(), [&service, request = std::move(request), done = std::move(done)] {
     const ReplyTo to = replyTo(request);
     try {
-      const std::vector<FormPart> parts =
-          parseMultipartForm(request.body(), formBoundary(std::string_view(request[http::field::content_type].data(),
-                                                                           request[http::field::content_type].size())));
+      const std::vector<FormPart> parts = formParts(request);
       const server::ImportedPatient imported = service.patients().import(patientUploadFromForm(parts));
       done(jsonResponse(http::status::created, importedJson(imported), to));
     } catch (const FormError& e) {

@@ -177,6 +177,11 @@ StringResponse importErrorReply(const server::PatientImportError& e, const std::
   return jsonResponse(status, body, to);
 }
 
+std::vector<FormPart> formParts(const Request& request) {
+  const auto type = request[http::field::content_type];
+  return parseMultipartForm(request.body(), formBoundary(std::string_view(type.data(), type.size())));
+}
+
 nlohmann::json importedJson(const server::ImportedPatient& imported) {
   return {{"case", server::casesJson({imported.entry})["cases"][0]},
           {"scale", imported.report.scale},
@@ -202,9 +207,7 @@ void stageScan(server::PlanningService& service, Request request, std::function<
   boost::asio::post(service.importPool(), [&service, request = std::move(request), done = std::move(done)] {
     const ReplyTo to = replyTo(request);
     try {
-      const std::vector<FormPart> parts =
-          parseMultipartForm(request.body(), formBoundary(std::string_view(request[http::field::content_type].data(),
-                                                                           request[http::field::content_type].size())));
+      const std::vector<FormPart> parts = formParts(request);
       std::vector<server::UploadedFile> files;
       for (const FormPart& p : parts) {
         if (p.fileName.empty() && p.data.empty()) continue;  // an empty file input

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "net/HttpMessages.hpp"
+#include "net/MultipartForm.hpp"
 #include "session/PlanningService.hpp"
 #include "volume/DicomSeries.hpp"
 
@@ -36,6 +37,8 @@ nlohmann::json seriesJson(const std::vector<DicomSeriesInfo>& series);
 // The reply to a refused upload or scan: {error, message, path, field?, series?}, its status by the
 // code (404 unknown_scan, 409 case_exists, 503 too_many_scans, else 400).
 StringResponse importErrorReply(const server::PatientImportError& e, const std::string& path, const ReplyTo& to);
+// The parts of a multipart/form-data request (the upload of a patient or a scan). Throws FormError.
+std::vector<FormPart> formParts(const Request& request);
 // The body of a created case: {case, scale, frame, warnings, built, scan, suggested}.
 nlohmann::json importedJson(const server::ImportedPatient& imported);
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "FormUpload.hpp"
 #include "HttpTestClient.hpp"
 #include "LabelMapFiles.hpp"
 #include "ServerProcess.hpp"
@@ -24,30 +25,12 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace std::chrono_literals;
 
-struct Part {
-  std::string field, fileName, data;  // fileName empty: a plain field
-};
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::Part;
+using test::readFile;
 
 // The raw request a browser's FormData makes, with Connection: close.
 std::string uploadRequest(const std::vector<Part>& parts, const std::string& extraHeaders = "") {
-  const std::string boundary = "----orthosimTestBoundary7MA4YWxk";
-  std::string body;
-  for (const Part& p : parts) {
-    body += "--" + boundary + "\r\nContent-Disposition: form-data; name=\"" + p.field + "\"";
-    if (!p.fileName.empty()) body += "; filename=\"" + p.fileName + "\"\r\nContent-Type: application/octet-stream";
-    body += "\r\n\r\n" + p.data + "\r\n";
-  }
-  body += "--" + boundary + "--\r\n";
-  return "POST /api/patients HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\nContent-Type: multipart/form-data; "
-         "boundary=" +
-         boundary + "\r\nContent-Length: " + std::to_string(body.size()) + "\r\n" + extraHeaders + "\r\n" + body;
+  return test::formRequest("/api/patients", parts, extraHeaders);
 }
 
 class PatientUpload : public ::testing::Test {

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <thread>
 
+#include "FormUpload.hpp"
 #include "HttpTestClient.hpp"
 #include "ServerProcess.hpp"
 #include "phantom/PhantomCase.hpp"
@@ -30,29 +31,11 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace std::chrono_literals;
 
-struct Part {
-  std::string field, fileName, data;  // fileName empty: a plain field
-};
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::Part;
+using test::readFile;
 
 std::string multipart(const std::string& path, const std::vector<Part>& parts) {
-  const std::string boundary = "----orthosimScanBoundary3kQ9";
-  std::string body;
-  for (const Part& p : parts) {
-    body += "--" + boundary + "\r\nContent-Disposition: form-data; name=\"" + p.field + "\"";
-    if (!p.fileName.empty()) body += "; filename=\"" + p.fileName + "\"\r\nContent-Type: application/octet-stream";
-    body += "\r\n\r\n" + p.data + "\r\n";
-  }
-  body += "--" + boundary + "--\r\n";
-  return "POST " + path +
-         " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\nContent-Type: multipart/form-data; boundary=" +
-         boundary + "\r\nContent-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
+  return test::formRequest(path, parts);
 }
 
 test::HttpReply send(unsigned short port, const std::string& raw, std::chrono::seconds silence = 10s) {
