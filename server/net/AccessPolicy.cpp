@@ -91,8 +91,14 @@ std::optional<Refusal> AccessPolicy::checkToken(const Request& request, const Re
   if (options_.token.empty()) return std::nullopt;
   auto it = request.find(http::field::authorization);
   if (it != request.end()) {
+    // RFC 7235: the scheme is case-insensitive ("bearer" too), and spaces may follow it.
     const std::string_view value(it->value().data(), it->value().size());
-    if (value.rfind("Bearer ", 0) == 0 && sameSecret(std::string(value.substr(7)), options_.token)) return std::nullopt;
+    const std::size_t space = value.find(' ');
+    if (space != std::string_view::npos && lower(value.substr(0, space)) == "bearer") {
+      const std::size_t start = value.find_first_not_of(' ', space);
+      const std::string credentials(start == std::string_view::npos ? std::string_view{} : value.substr(start));
+      if (sameSecret(credentials, options_.token)) return std::nullopt;
+    }
   }
   if (const std::optional<std::string> q = queryValue(target.query, "token"); q && sameSecret(*q, options_.token))
     return std::nullopt;
@@ -106,10 +112,12 @@ std::optional<Refusal> AccessPolicy::checkOrigin(const Request& request) const {
   const std::string origin = lower(std::string_view(it->value().data(), it->value().size()));
   for (const std::string& allowed : options_.allowedOrigins)
     if (allowed == "*" || lower(allowed) == origin) return std::nullopt;
+  // The page's own origin: this server speaks plain HTTP, so "http://" and the Host. A page served
+  // over https by a proxy in front is another origin, allowed by name (--allow-origin).
   auto host = request.find(http::field::host);
   if (host != request.end()) {
     const std::string self = lower(std::string_view(host->value().data(), host->value().size()));
-    if (origin == "http://" + self || origin == "https://" + self) return std::nullopt;
+    if (origin == "http://" + self) return std::nullopt;
   }
   return Refusal{http::status::forbidden, "bad_origin",
                  "request from a page of origin '" + origin + "' refused (allow it with --allow-origin)"};

@@ -33,6 +33,32 @@ TEST(AccessPolicy, TokenComparison) {
   r.set(http::field::authorization, "Bearer ab");
   EXPECT_TRUE(policy.checkToken(r, {"/api/health", ""}));
   EXPECT_FALSE(policy.checkToken(Request{}, {"/ws", "token=abc"}));
+  r.set(http::field::authorization, "bearer abc");
+  EXPECT_FALSE(policy.checkToken(r, {"/api/health", ""})) << "the scheme is case-insensitive";
+  r.set(http::field::authorization, "BEARER   abc");
+  EXPECT_FALSE(policy.checkToken(r, {"/api/health", ""}));
+  r.set(http::field::authorization, "Basic abc");
+  EXPECT_TRUE(policy.checkToken(r, {"/api/health", ""})) << "another scheme";
+  r.set(http::field::authorization, "Bearerabc");
+  EXPECT_TRUE(policy.checkToken(r, {"/api/health", ""}));
+}
+
+// The page's own origin is http:// and the Host: this server has no TLS, so an https origin with
+// the same name is another page (a proxy's, allowed by name).
+TEST(AccessPolicy, OriginIsThePagesOwn) {
+  Request r;
+  r.set(http::field::host, "127.0.0.1:8080");
+  const AccessPolicy policy(AccessOptions{}, "127.0.0.1");
+  r.set(http::field::origin, "http://127.0.0.1:8080");
+  EXPECT_FALSE(policy.checkOrigin(r));
+  r.set(http::field::origin, "https://127.0.0.1:8080");
+  EXPECT_TRUE(policy.checkOrigin(r));
+  r.set(http::field::origin, "http://127.0.0.1:8081");
+  EXPECT_TRUE(policy.checkOrigin(r));
+  AccessOptions proxied;
+  proxied.allowedOrigins = {"https://planner.clinic.example"};
+  r.set(http::field::origin, "https://planner.clinic.example");
+  EXPECT_FALSE(AccessPolicy(proxied, "127.0.0.1").checkOrigin(r));
 }
 
 Request withHost(const std::string& host) {
