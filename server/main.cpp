@@ -197,6 +197,10 @@ int main(int argc, char** argv) {
   import->add_option("--units", importInput.units, "Units of the files: auto (mm; refuses metre-sized data), mm, m")
       ->check(CLI::IsMember({"auto", "mm", "m"}));
   import->add_option("--name", importInput.name, "Name of the case (default: the folder's)");
+  importInput.checkOpens = true;
+  import->add_flag(
+      "!--no-open-check", importInput.checkOpens,
+      "Skip building the coarse model before the case is written (it is then checked at its first opening)");
   std::vector<double> importAnterior, importSuperior;
   import->add_option("--anterior", importAnterior, "Anterior direction of the files' axes (default -1 0 0)")
       ->expected(3);
@@ -262,6 +266,10 @@ int main(int argc, char** argv) {
   serve->add_flag("!--no-warm-up", serveOptions.warmUp, "Do not build the phantom's coarse model at start");
   serve->add_option("--max-upload-mb", serveOptions.maxUploadMb, "Largest patient upload (POST /api/patients), MiB")
       ->check(CLI::Range(1, 4096));
+  serve
+      ->add_option("--max-uploads", serveOptions.maxUploads,
+                   "Uploads (POST /api/patients, /api/scans) received or imported at once; more get 503")
+      ->check(CLI::Range(1, 256));
   serve
       ->add_option("--scan-expiry", serveOptions.scanExpirySeconds,
                    "Seconds a scan staged for import (POST /api/scans) is kept unused before it is removed")

@@ -24,6 +24,7 @@ const state = {
   posesDirty: false, sendTimer: null, lastSend: -Infinity, job: null, nextId: 1, viewInFlight: false,
   pendingView: null, lastFrameUrl: null, frameTimes: [], lastSolve: null, openAfterList: null, reconnected: false, session: null, formerSession: null,
   frameSize: null, lastFigures: null,
+  pendingSave: null, askReplace: null, planDetails: new Map(),  // a save_plan awaiting its reply; a replace to ask
 };
 const SEND_INTERVAL_MS = 50;  // at most 20 pose updates a second while dragging
 
@@ -77,14 +78,13 @@ const handlers = {
     state.session = m.session;
   },
   cases: (m) => {
-    const select = $("case-select");
-    select.innerHTML = "";
-    for (const c of m.cases) select.add(new Option(`${c.name} — ${c.description}`, c.id));
+    // Names and descriptions are the case files' (an upload's name is any text): options as text.
+    $("case-select").replaceChildren(...m.cases.map((c) => new Option(`${c.name} — ${c.description}`, c.id)));
     // A patient just imported opens at once; after a reconnect the case that was open opens again.
     const next = state.openAfterList || (state.reconnected ? state.caseId : null);
     state.openAfterList = null;
     state.reconnected = false;
-    if (next) { select.value = next; openCase(next); }
+    if (next) { $("case-select").value = next; openCase(next); }
   },
   opening: (m) => say(`opening ${m.case}…`),
   opened: (m) => { onOpened(m); showCaseEditor(m); showFaceTargets(m); },
@@ -111,13 +111,8 @@ const handlers = {
   },
   job_failed: (m) => onJobEnd(m, m.message),
   cancelling: () => {},
-  saved: (m) => { say(`plan "${m.name}" saved`); send({ type: "list_plans" }); },
-  plans: (m) => {
-    const list = $("plan-list");
-    list.innerHTML = "";
-    for (const name of m.plans) list.add(new Option(name, name));
-    $("load-plan").disabled = m.plans.length === 0;
-  },
+  saved: (m) => { say(`plan "${m.name}" saved ${savedBy(m)}`); send({ type: "list_plans" }); },
+  plans: (m) => onPlans(m),
   exported: (m) => {
     const a = $("download");
     a.href = m.url + (token() ? "?token=" + encodeURIComponent(token()) : "");
@@ -136,6 +131,7 @@ const handlers = {
   error: (m) => {
     if (m.error === "unknown_type" && /view/.test(m.message)) return;  // a server without rendering
     if (m.error === "edit_failed") onEditFailed(m);
+    if (m.error === "plan_exists" && state.pendingSave && m.id === state.pendingSave.id) return onPlanExists(m);
     say(m.message, "error");
   },
 };
@@ -181,7 +177,7 @@ function onOpened(m) {
 
 function renderFragments() {
   const box = $("fragments");
-  box.innerHTML = "";
+  box.replaceChildren();
   for (const f of state.fragments) {
     const div = document.createElement("div");
     div.className = "fragment";
@@ -267,19 +263,35 @@ function onPreview(m) {
   const f = m.figures;
   state.lastFigures = f;
   state.lastSolve = { seconds: f.solve_s, at: new Date().toLocaleTimeString() };
-  let rows = "";
+  const table = document.createElement("table");
+  tableRow(table, "th", ["landmark", "forward", "up", "right"]);
   for (const [name, label] of Object.entries(LANDMARK_NAMES)) {
     const l = f.landmarks[name];
-    if (l) rows += `<tr><td>${label}</td><td>${l.anterior_mm.toFixed(2)}</td><td>${l.superior_mm.toFixed(2)}</td><td>${l.right_mm.toFixed(2)}</td></tr>`;
+    if (l) tableRow(table, "td", [label, l.anterior_mm.toFixed(2), l.superior_mm.toFixed(2), l.right_mm.toFixed(2)]);
   }
-  $("preview-figures").innerHTML =
-    `<p id="solve-time">Solved in <b>${f.solve_s.toFixed(2)} s</b> (${f.iterations} Newton iterations); ` +
-    `skin moved up to ${f.max_skin_displacement_mm.toFixed(1)} mm.` +
+  const time = element("p", "", "Solved in ", element("b", "", `${f.solve_s.toFixed(2)} s`),
+    ` (${f.iterations} Newton iterations); skin moved up to ${f.max_skin_displacement_mm.toFixed(1)} mm.` +
     (f.linear_error ? ` The drag view was off by up to ${f.linear_error.max_mm.toFixed(2)} mm` +
-      (f.linear_error.lips_mm !== undefined ? ` (lips ${f.linear_error.lips_mm.toFixed(2)} mm)` : "") + "." : "") +
-    `</p>` +
-    `<table><tr><th>landmark</th><th>forward</th><th>up</th><th>right</th></tr>${rows}</table>`;
+      (f.linear_error.lips_mm !== undefined ? ` (lips ${f.linear_error.lips_mm.toFixed(2)} mm)` : "") + "." : ""));
+  time.id = "solve-time";
+  $("preview-figures").replaceChildren(time, table);
   appendSolveWarnings($("preview-figures"), f.warnings);
+}
+
+// An element of `tag` with class `className` holding `parts`: strings (as text) and elements. The
+// page builds everything this way; nothing it shows is parsed as markup.
+function element(tag, className, ...parts) {
+  const e = document.createElement(tag);
+  if (className) e.className = className;
+  e.append(...parts);
+  return e;
+}
+
+// A row of `cells` (texts) in `table`, as `tag` ("th" or "td") cells.
+function tableRow(table, tag, cells) {
+  const row = table.insertRow();
+  for (const text of cells) row.append(element(tag, "", text));
+  return row;
 }
 
 // What the solver says about the result itself (e.g. bone pieces that overlap), as text.
@@ -311,7 +323,7 @@ function onJobDone(m) {
   onJob(m, "done", 1);
   $("cancel-job").disabled = true;
   const d = m.coarse_vs_fine;
-  $("job-status").innerHTML = `Fine job ${m.job} done in ${m.figures.time_s.toFixed(1)} s ` +
+  $("job-status").textContent = `Fine job ${m.job} done in ${m.figures.time_s.toFixed(1)} s ` +
     `(${m.figures.tetrahedra} tetrahedra).` + (d && d.max_mm !== undefined
       ? ` Coarse vs fine on the skin: mean ${d.mean_mm.toFixed(2)} mm, 95% within ${d.p95_mm.toFixed(2)} mm, max ${d.max_mm.toFixed(2)} mm.`
       : "");
@@ -407,6 +419,55 @@ function onPicked(m) {
     : "nothing under that pixel";
 }
 
+// ---- plans ----------------------------------------------------------------------------------
+
+const USER_NAME_KEY = "orthosim.userName";
+
+// "by Ada at 2025-05-01T09:30:00Z": who saved a plan and when, as `saved` and list_plans give it.
+function savedBy(p) {
+  return `by ${p.saved_by || "someone who gave no name"}${p.saved_at ? ` at ${p.saved_at}` : ""}`;
+}
+
+function onPlans(m) {
+  const details = new Map((m.details || []).map((d) => [d.name, d]));
+  state.planDetails = details;
+  $("plan-list").replaceChildren(...m.plans.map((name) =>
+    new Option(details.has(name) ? `${name} (${savedBy(details.get(name))})` : name, name)));
+  $("load-plan").disabled = m.plans.length === 0;
+  if (state.askReplace) askReplace(state.askReplace, details.get(state.askReplace.name));
+}
+
+function savePlan(name, replace) {
+  const message = { type: "save_plan", name };
+  const user = $("user-name").value.trim();
+  if (user) message.saved_by = user;
+  if (replace) message.replace = true;
+  state.pendingSave = { name, id: send(message) };
+}
+
+// The name is saved already (perhaps by another surgeon since this page listed the plans): the
+// current list says by whom and when, then the surgeon decides.
+function onPlanExists(m) {
+  state.askReplace = { name: state.pendingSave.name, message: m.message };
+  state.pendingSave = null;
+  send({ type: "list_plans" });
+}
+
+function askReplace(ask, detail) {
+  state.askReplace = null;
+  const who = detail ? `Plan "${ask.name}" was saved ${savedBy(detail)}.` : ask.message;
+  if (confirm(`${who}\n\nReplace it with the current plan?`)) savePlan(ask.name, true);
+  else say(`plan "${ask.name}" not saved: the saved one is kept`);
+}
+
+function setupUserName() {
+  const field = $("user-name");
+  try { field.value = localStorage.getItem(USER_NAME_KEY) || ""; } catch (e) { /* storage off: ask each time */ }
+  field.oninput = () => {
+    try { localStorage.setItem(USER_NAME_KEY, field.value.trim()); } catch (e) { /* kept for this page only */ }
+  };
+}
+
 // ---- buttons --------------------------------------------------------------------------------
 
 function setEnabled(on) {
@@ -421,7 +482,7 @@ function setupButtons() {
     const name = $("plan-name").value.trim();
     if (!/^[A-Za-z0-9][A-Za-z0-9_-]{0,63}$/.test(name))
       return say("plan names are 1-64 letters, digits, '_' or '-', starting with a letter or digit", "error");
-    send({ type: "save_plan", name });
+    savePlan(name, false);
   };
   $("load-plan").onclick = () => send({ type: "load_plan", name: $("plan-list").value });
   $("export").onclick = () => send({ type: "export", format: $("export-format").value, result: $("export-result").value });
@@ -429,4 +490,5 @@ function setupButtons() {
 
 setupViewer();
 setupButtons();
+setupUserName();
 connect();

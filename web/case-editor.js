@@ -44,7 +44,8 @@ function showFrame(m) {
 // The needed landmarks first (what the cuts, the frame and the figures read), then the others.
 function renderLandmarks() {
   const table = $("landmark-table");
-  table.innerHTML = "<tr><th>landmark</th><th>needed by</th><th>at rest (mm)</th><th></th></tr>";
+  table.replaceChildren();
+  tableRow(table, "th", ["landmark", "needed by", "at rest (mm)", ""]);
   const all = [...new Set([...Object.keys(editor.needed), ...Object.keys(editor.landmarks), ...Object.keys(editor.pending)])];
   const names = all.sort((a, b) => (Boolean(editor.needed[b]) - Boolean(editor.needed[a])) || a.localeCompare(b));
   for (const name of names) {
@@ -90,18 +91,25 @@ const templateKey = (t) => (t.side ? `${t.kind}_${t.side}` : t.kind);
 
 function renderCutEditor() {
   const box = $("cut-editor");
-  box.innerHTML = "";
+  box.replaceChildren();
+  // An input of `type` with `attributes` (data-* and aria-label as attributes, the rest as properties).
+  const input = (type, attributes, props) => {
+    const e = Object.assign(document.createElement("input"), { type, ...props });
+    for (const [name, value] of Object.entries(attributes)) e.setAttribute(name, value);
+    return e;
+  };
   for (const t of TEMPLATES) {
     const current = editor.cuts.find((c) => c.kind === t.kind && (!t.side || c.side === t.side));
-    const row = document.createElement("label");
-    row.className = "row";
     const key = templateKey(t);
-    row.innerHTML = `<input type="checkbox" data-kind="${key}" aria-label="cut ${key}"> ${t.label}
-      <input type="number" step="0.5" min="0" max="50" data-offset="${key}" aria-label="${key} offset" style="width: 64px"> ${t.hint}` +
-      (t.tilts ? `; tilt <input type="number" step="1" min="-30" max="30" data-tilt="${key}" aria-label="${key} tilt" style="width: 52px">° (+ front up)` : "");
-    row.querySelector("input[type=checkbox]").checked = Boolean(current);
-    row.querySelector("input[data-offset]").value = current && current.offset_mm !== undefined ? current.offset_mm : t.offset;
-    if (t.tilts) row.querySelector("input[data-tilt]").value = current && current.tilt_deg !== undefined ? current.tilt_deg : 0;
+    const row = element("label", "row",
+      input("checkbox", { "data-kind": key, "aria-label": `cut ${key}` }, { checked: Boolean(current) }), ` ${t.label} `,
+      input("number", { "data-offset": key, "aria-label": `${key} offset` }, {
+        step: 0.5, min: 0, max: 50, value: current && current.offset_mm !== undefined ? current.offset_mm : t.offset,
+      }), ` ${t.hint}`);
+    if (t.tilts)
+      row.append("; tilt ", input("number", { "data-tilt": key, "aria-label": `${key} tilt` }, {
+        step: 1, min: -30, max: 30, value: current && current.tilt_deg !== undefined ? current.tilt_deg : 0,
+      }), "° (+ front up)");
     box.append(row);
   }
 }

@@ -37,11 +37,14 @@ function onBandDone(m) {
   $("band-cancel").disabled = true;
   const b = m.band;
   const failed = b.runs.filter((r) => !r.converged);
-  $("band-status").innerHTML = `Band job ${m.job} done: ${b.converged} of ${b.solves} solves converged in ` +
-    `${m.time_s.toFixed(1)} s (${m.resolution}). Band width up to <b>${b.width.max_mm.toFixed(2)} mm</b>; ` +
-    `${(b.width.share_over_1mm * 100).toFixed(1)}% of the skin over 1 mm.` +
-    (failed.length ? ` Left out (did not converge): ${failed.map((r) => r.label).join(", ")}.` : "") +
-    ` <b id="band-stale" hidden>This band is of earlier poses: run it again for the current plan.</b>`;
+  const stale = element("b", "", "This band is of earlier poses: run it again for the current plan.");
+  stale.id = "band-stale";
+  stale.hidden = true;
+  $("band-status").replaceChildren(
+    `Band job ${m.job} done: ${b.converged} of ${b.solves} solves converged in ` +
+    `${m.time_s.toFixed(1)} s (${m.resolution}). Band width up to `, element("b", "", `${b.width.max_mm.toFixed(2)} mm`),
+    `; ${(b.width.share_over_1mm * 100).toFixed(1)}% of the skin over 1 mm.` +
+    (failed.length ? ` Left out (did not converge): ${failed.map((r) => r.label).join(", ")}.` : "") + " ", stale);
   const cell = (tag, text) => { const c = document.createElement(tag); c.textContent = text; return c; };
   const rows = [];
   for (const l of b.landmarks) {
@@ -103,7 +106,7 @@ function setupBand() {
     $("band-run").disabled = false;
     $("band-flip").hidden = true;
     $("band-export-row").hidden = true;
-    $("band-table").innerHTML = "";
+    $("band-table").replaceChildren();
     $("band-status").textContent = "";
   };
   $("band-run").onclick = () => send({ type: "band", resolution: $("band-resolution").value });

@@ -2,9 +2,11 @@
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
+#include <vtkDataArray.h>
 #include <vtkDiscreteFlyingEdges3D.h>
 #include <vtkIdList.h>
 #include <vtkImageData.h>
+#include <vtkInformation.h>
 #include <vtkLogger.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNIFTIImageHeader.h>
@@ -15,6 +17,7 @@
 #include <vtkPolyData.h>
 #include <vtkQuadricDecimation.h>
 #include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkWindowedSincPolyDataFilter.h>
 
 #include <algorithm>
@@ -24,6 +27,7 @@
 #include <deque>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -101,11 +105,65 @@ void requireVolume(const LabelMap& map, int components) {
 
 const Eigen::Matrix3d kRasToLps = Eigen::Vector3d(-1, -1, 1).asDiagonal();
 
+// How a file stores its voxels, for the least bytes it needs for them.
+enum class VoxelEncoding { Raw, Gzip, Ascii, Elsewhere };  // Elsewhere: a detached header's data file
+
+// Deflate expands a byte to at most 1032.
+constexpr double kMaxDeflateRatio = 1032;
+// A label map of 1024^3 voxels is beyond any head scan (CBCT: 512^3 at most) and already takes
+// gigabytes as the ints it is read into.
+constexpr double kMaxVoxels = 1024.0 * 1024.0 * 1024.0;
+
+// Refuses, before VTK allocates what the header declares, voxels that cannot be in the file: more
+// bytes than it holds (raw), than deflate could expand it to (gzip), than its text has values (2
+// bytes a value at least), or more voxels than any label map has. Call after UpdateInformation().
+// `headerBytes`: what comes before the voxels in the file.
+void checkDeclaredVoxels(vtkAlgorithm* reader, const std::string& path, VoxelEncoding encoding,
+                         std::uintmax_t headerBytes) {
+  vtkInformation* info = reader->GetOutputInformation(0);
+  int extent[6] = {0, -1, 0, -1, 0, -1};
+  if (info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  double voxels = 1;
+  for (int a = 0; a < 3; ++a) voxels *= std::max(0, extent[2 * a + 1] - extent[2 * a] + 1);
+  const double values = voxels * std::max(1, vtkImageData::GetNumberOfScalarComponents(info));
+  const double bytes = values * std::max(1, vtkDataArray::GetDataTypeSize(vtkImageData::GetScalarType(info)));
+  std::error_code ec;
+  const std::uintmax_t fileBytes = std::filesystem::file_size(path, ec);
+  const double size = static_cast<double>(fileBytes > headerBytes ? fileBytes - headerBytes : 0);
+  const auto declared = [&] {
+    std::ostringstream s;
+    s << path << ": the header declares " << extent[1] - extent[0] + 1 << " x " << extent[3] - extent[2] + 1 << " x "
+      << extent[5] - extent[4] + 1 << " voxels (" << std::fixed << std::setprecision(0) << bytes << " bytes)";
+    return s.str();
+  };
+  if (voxels > kMaxVoxels)
+    throw LabelMapError(declared() + ": more than 1024^3 voxels, beyond any head scan's label map");
+  if (ec) return;
+  std::ostringstream have;
+  have << std::fixed << std::setprecision(0) << size;
+  if (encoding == VoxelEncoding::Raw && bytes > size) {
+    std::ostringstream need;
+    need << std::fixed << std::setprecision(0) << bytes;
+    throw LabelMapError(path + ": truncated: the voxels need " + need.str() + " bytes, the file holds " + have.str());
+  }
+  if (encoding == VoxelEncoding::Gzip && bytes > kMaxDeflateRatio * size)
+    throw LabelMapError(declared() + ", more than its " + have.str() + " compressed bytes can hold");
+  if (encoding == VoxelEncoding::Ascii && 2 * values > size + 1)
+    throw LabelMapError(declared() + ", more values than its " + have.str() + " bytes of text can hold");
+}
+
 LabelMap readNifti(const std::string& path) {
   auto reader = Ptr<vtkNIFTIImageReader>::New();
   if (!reader->CanReadFile(path.c_str())) throw LabelMapError(path + ": not a NIfTI file (no NIfTI header)");
   VtkMessages messages(reader);
   reader->SetFileName(path.c_str());
+  reader->UpdateInformation();
+  const bool gzip = endsWith(lower(path), ".gz");  // its header is compressed with the voxels
+  if (messages.errors.empty())
+    checkDeclaredVoxels(
+        reader, path, gzip ? VoxelEncoding::Gzip : VoxelEncoding::Raw,
+        gzip ? 0 : static_cast<std::uintmax_t>(std::max<vtkTypeInt64>(0, reader->GetNIFTIHeader()->GetVoxOffset())));
   reader->Update();
   vtkImageData* image = reader->GetOutput();
   if (!messages.errors.empty() || !image || image->GetNumberOfPoints() == 0)
@@ -245,6 +303,14 @@ LabelMap readNrrd(const std::string& path, bool detached) {
   auto reader = Ptr<vtkNrrdReader>::New();
   VtkMessages messages(reader);
   reader->SetFileName(path.c_str());
+  reader->UpdateInformation();
+  if (messages.errors.empty())
+    checkDeclaredVoxels(reader, path,
+                        detached || f.count("data file") || f.count("datafile") ? VoxelEncoding::Elsewhere
+                        : encoding == "raw"                                     ? VoxelEncoding::Raw
+                        : encoding == "gzip" || encoding == "gz"                ? VoxelEncoding::Gzip
+                                                                                : VoxelEncoding::Ascii,
+                        headerBytes);
   reader->Update();
   vtkImageData* image = reader->GetOutput();
   if (!messages.errors.empty() || !image || image->GetNumberOfPoints() == 0)

@@ -1,6 +1,7 @@
 #include "mesh/SurfaceImport.hpp"
 
 #include "mesh/CheckedFileSystem.hpp"
+#include "mesh/PlyHeader.hpp"
 
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
@@ -92,6 +93,7 @@ SurfaceMesh importSurface(const std::string& path) {
   if (ec) throw std::runtime_error(path + ": cannot open file");
   if (size == 0) throw std::runtime_error(path + ": file is empty");
   if (format == Format::Stl) checkStlStructure(path, size);
+  if (format == Format::Ply) checkPlySize(path, size);  // before assimp allocates what the header declares
 
   Assimp::Importer importer;
   // STL stores a normal per facet, so its corners differ in normal and would not be merged; normals

@@ -18,6 +18,8 @@
 #include "mesh/SurfaceRules.hpp"
 #include "mesh/TemporaryName.hpp"
 #include "scene/CaseFile.hpp"
+#include "scene/CaseModel.hpp"
+#include "scene/CaseTissue.hpp"
 #include "scene/LandmarkFrame.hpp"
 #include "scene/LandmarkName.hpp"
 #include "scene/MouthGeometry.hpp"
@@ -546,6 +548,45 @@ std::string boneOfTemplate(const std::string& kind) {
   return kind == "le_fort_1" || kind == "le_fort_2" || kind == "segmented_maxilla" ? "skull" : "mandible";
 }
 
+namespace {
+
+// What opening the case does first: its coarse model built (the tissue meshed around the bones,
+// the osteotomies cut, the bonds found), then the caller's own checks. `folder` (the temporary
+// one) is left out of messages: they name the case's files as the user knows them.
+void checkOpens(const CaseImportInput& input, const std::string& caseFile, const std::string& folder) {
+  stage(input, "building the model");
+  // The written files by the names the user gave them: "texture.jpg" -> ".../skin.jpg".
+  std::vector<std::pair<std::string, std::string>> given = {
+      {"skin.obj", input.skin}, {"skull.stl", input.skull}, {"mandible.stl", input.mandible}};
+  if (!input.texture.empty())
+    given.push_back({"texture" + fs::path(input.texture).extension().string(), input.texture});
+  const auto named = [&](std::string message) {
+    for (std::size_t at; (at = message.find(folder)) != std::string::npos;) message.erase(at, folder.size());
+    for (const auto& [written, user] : given) {
+      if (user.empty()) continue;
+      for (std::size_t at = 0; (at = message.find(written, at)) != std::string::npos;) {
+        if (at == 0 || message[at - 1] == ' ' || message[at - 1] == '\'') {
+          message.replace(at, written.size(), user);
+          at += user.size();
+        } else {
+          at += written.size();
+        }
+      }
+    }
+    return message;
+  };
+  try {
+    CaseTissueOptions options;
+    options.cacheDir = input.cacheDir.empty() ? defaultCacheDir() : input.cacheDir;
+    (void)buildCaseModel(loadCaseFile(caseFile), Resolution::Coarse, options);
+    if (input.opens) input.opens(caseFile);
+  } catch (const std::exception& e) {
+    throw CaseImportError("the case would not open: " + named(e.what()));
+  }
+}
+
+}  // namespace
+
 CaseImportReport importCase(const CaseImportInput& input, const std::string& outDir) {
   const fs::path out = fs::absolute(outDir);
   if (fs::exists(out)) throw CaseImportError(out.string() + ": exists already; choose a new folder for the case");
@@ -565,6 +606,7 @@ CaseImportReport importCase(const CaseImportInput& input, const std::string& out
   fs::create_directories(tmp);
   try {
     writeFolder(named, std::move(sources), tmp, report.scale, report);
+    if (input.checkOpens) checkOpens(input, (tmp / "case.json").string(), tmp.string() + "/");
     fs::rename(tmp, out);
   } catch (...) {
     std::error_code ignored;

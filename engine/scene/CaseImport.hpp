@@ -54,6 +54,14 @@ struct CaseImportInput {
   // (scene/LandmarkFrame), else the case format's (anterior -x, superior +z), or for a label map
   // its patient frame's (LPS: anterior -y, superior +z).
   std::optional<Eigen::Vector3d> anterior, superior;
+  // An accepted case must open. With `checkOpens`, the coarse model is built from the written folder
+  // before it is put in place (its tissue cached in `cacheDir`, empty: defaultCacheDir(), so the
+  // first opening finds it there), and `opens` (when set) is asked about the folder's case file too
+  // (a program's own checks, e.g. its renderer reading the texture; it throws to refuse). A case
+  // that would not open is refused with the reason, and nothing is left.
+  bool checkOpens = false;
+  std::string cacheDir;
+  std::function<void(const std::string& caseFile)> opens;
 };
 
 struct CaseImportReport {
@@ -76,7 +84,7 @@ struct CaseImportError : std::runtime_error {
 
 // Writes the case into `outDir`, which must not exist: the surfaces in mm (skin.obj, skull.stl,
 // mandible.stl, cavity_<k>.stl), the texture, landmarks.json and case.json, which is then loaded
-// as a check. On any failure nothing is left behind.
+// (and with checkOpens, built) as a check. On any failure nothing is left behind.
 CaseImportReport importCase(const CaseImportInput& input, const std::string& outDir);
 
 // The bone a template cuts: the skull for the maxilla's (le_fort_1, le_fort_2, segmented_maxilla),

@@ -5,7 +5,8 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "mesh/TemporaryName.hpp"
+#include "mesh/AtomicFile.hpp"
+
 namespace orthosim {
 namespace {
 
@@ -13,7 +14,7 @@ constexpr char kMagic[8] = {'O', 'S', 'T', 'I', 'S', 'S', '0', '2'};
 
 class Writer {
  public:
-  explicit Writer(std::ofstream& out) : out_(out) {}
+  explicit Writer(std::ostream& out) : out_(out) {}
   void i64(std::int64_t v) { out_.write(reinterpret_cast<const char*>(&v), sizeof v); }
   void f64(double v) { out_.write(reinterpret_cast<const char*>(&v), sizeof v); }
   template <class M>
@@ -33,7 +34,7 @@ class Writer {
   }
 
  private:
-  std::ofstream& out_;
+  std::ostream& out_;
 };
 
 // Every read is bounds-checked against the file size, so a damaged file fails cleanly.
@@ -86,32 +87,27 @@ class Reader {
 }  // namespace
 
 void writeTissueCache(const std::string& path, const CaseTissue& t) {
-  namespace fs = std::filesystem;
-  fs::create_directories(fs::path(path).parent_path());
-  const std::string tmp = path + ".tmp" + temporarySuffix();
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw std::runtime_error(tmp + ": cannot write the tissue cache");
-    out.write(kMagic, sizeof kMagic);
-    Writer w(out);
-    w.matrix(t.mesh.rest);
-    w.matrix(t.mesh.tets);
-    w.i64(static_cast<std::int64_t>(t.boneNodes.size()));
-    for (const auto& b : t.boneNodes) w.ints(b);
-    w.ints(t.skinNodes);
-    w.i64(t.skinTriangles);
-    w.matrix(t.skin.vertices);
-    w.matrix(t.skin.triangles);
-    w.matrix(t.skin.uv);
-    const MeshQuality& q = t.quality;
-    for (double v : {double(q.nodes), double(q.tets), double(q.boundaryFaces), q.minDihedralDeg, q.maxDihedralDeg,
-                     q.maxRadiusEdgeRatio, q.meanRadiusEdgeRatio, q.minVolume})
-      w.f64(v);
-    w.i64(static_cast<std::int64_t>(t.report.size()));
-    for (const auto& line : t.report) w.text(line);
-    if (!out) throw std::runtime_error(tmp + ": cannot write the tissue cache");
-  }
-  fs::rename(tmp, path);
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  AtomicFile file(path);  // a failed write (a full disk) leaves no temporary file behind
+  std::ostream& out = file.out();
+  out.write(kMagic, sizeof kMagic);
+  Writer w(out);
+  w.matrix(t.mesh.rest);
+  w.matrix(t.mesh.tets);
+  w.i64(static_cast<std::int64_t>(t.boneNodes.size()));
+  for (const auto& b : t.boneNodes) w.ints(b);
+  w.ints(t.skinNodes);
+  w.i64(t.skinTriangles);
+  w.matrix(t.skin.vertices);
+  w.matrix(t.skin.triangles);
+  w.matrix(t.skin.uv);
+  const MeshQuality& q = t.quality;
+  for (double v : {double(q.nodes), double(q.tets), double(q.boundaryFaces), q.minDihedralDeg, q.maxDihedralDeg,
+                   q.maxRadiusEdgeRatio, q.meanRadiusEdgeRatio, q.minVolume})
+    w.f64(v);
+  w.i64(static_cast<std::int64_t>(t.report.size()));
+  for (const auto& line : t.report) w.text(line);
+  file.commit();
 }
 
 std::optional<CaseTissue> readTissueCache(const std::string& path) {

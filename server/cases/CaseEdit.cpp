@@ -3,9 +3,10 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "mesh/TemporaryName.hpp"
+#include "mesh/AtomicFile.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/CaseImport.hpp"
 #include "scene/LandmarkFrame.hpp"
@@ -24,13 +25,6 @@ json cutJson(const CutChoice& c) {
   if (!c.side.empty()) cut["side"] = c.side;
   if (c.tiltDeg != 0) cut["tilt_deg"] = c.tiltDeg;
   return cut;
-}
-
-void writeText(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  out.close();
-  if (!out) throw CaseEditError("cannot write " + path.filename().string() + " in " + path.parent_path().string());
 }
 
 }  // namespace
@@ -74,19 +68,25 @@ void applyCaseEdit(const fs::path& caseFile, const CaseEdit& edit) {
     }
     root["cuts"] = cuts;
   }
-  const fs::path tmp = caseFile.parent_path() / (".case.json.editing-" + temporarySuffix());
-  writeText(tmp, root.dump(2) + "\n");
   try {
-    loadCaseFile(tmp.string());  // every cut placed from its landmarks, or the reason why not
-  } catch (const std::exception& e) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    std::string why = e.what();
-    const std::string prefix = tmp.string() + ": ";
-    if (why.rfind(prefix, 0) == 0) why = why.substr(prefix.size());
-    throw CaseEditError(why);
+    // Beside the case file, hidden; removed whatever fails (a full disk, a cut the case refuses).
+    AtomicFile file(caseFile, ".case.json.editing-");
+    file.out() << root.dump(2) + "\n";
+    file.finish();
+    const fs::path tmp = file.temporaryPath();
+    try {
+      loadCaseFile(tmp.string());  // every cut placed from its landmarks, or the reason why not
+    } catch (const std::exception& e) {
+      std::string why = e.what();
+      const std::string prefix = tmp.string() + ": ";
+      if (why.rfind(prefix, 0) == 0) why = why.substr(prefix.size());
+      throw CaseEditError(why);
+    }
+    file.commit();  // atomic: a reader sees the old case or the new one
+  } catch (const AtomicFileError& e) {
+    std::cerr << "orthosim serve: editing a case: " << e.what() << "\n";
+    throw CaseEditError("the case file could not be written on the server: " + e.reason());
   }
-  fs::rename(tmp, caseFile);  // atomic: a reader sees the old case or the new one
 }
 
 }  // namespace orthosim::server

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "eval/RealFace.hpp"
+#include "mesh/AtomicFile.hpp"
 #include "mesh/TemporaryName.hpp"
 #include "phantom/PhantomCase.hpp"
 
@@ -91,18 +92,13 @@ std::string CaseLibrary::artisynthCaseFile(const CaseEntry& entry) {
     if (in && old == text) return file.string();
   }
   fs::create_directories(dir);
-  const fs::path tmp = dir / ("case.json.writing-" + temporarySuffix());
-  {
-    std::ofstream out(tmp);
-    out << text;
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(tmp, ignored);
-      throw std::runtime_error("cannot write the case " + entry.id + " into " + dir.string());
-    }
+  try {
+    AtomicFile out(file, "case.json.writing-");
+    out.out() << text;
+    out.commit();  // atomic: a reader sees the old file or the new one
+  } catch (const AtomicFileError& e) {
+    throw std::runtime_error("cannot write the case " + entry.id + " into " + dir.string() + ": " + e.reason());
   }
-  fs::rename(tmp, file);  // atomic: a reader sees the old file or the new one
   return file.string();
 }
 

@@ -5,11 +5,14 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <iostream>
 #include <map>
 
 #include "cases/Identifier.hpp"
 #include "cases/ScanFiles.hpp"
 #include "mesh/TemporaryName.hpp"
+#include "render/CaseView.hpp"
+#include "scene/CaseFile.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;
@@ -89,7 +92,7 @@ void checkUpload(const PatientUpload& u, const CaseLibrary& cases, const fs::pat
           f.field + ": '" + f.fileName + "' has the same name as the " + it->second + " file; rename one");
     if (++count[f.field] > 1 && f.field != "cavity")
       throw PatientImportError("bad_file", f.field, f.field + ": more than one file; send one");
-    if (f.data.empty()) throw PatientImportError("bad_file", f.field, f.fileName + ": the file is empty");
+    if (f.bytes.size == 0) throw PatientImportError("bad_file", f.field, f.fileName + ": the file is empty");
   }
   if (staged || count.count("dicom") || count.count("dicom_zip")) {
     const char* scanField = count.count("dicom") ? "dicom" : "dicom_zip";
@@ -135,6 +138,32 @@ void checkUpload(const PatientUpload& u, const CaseLibrary& cases, const fs::pat
                                    " surface is needed (STL, OBJ or PLY), or a label map instead of the three");
 }
 
+// Whether `message` names the file `name` as a word of its own ("skin.obj: ...", not "my_skin.obj").
+bool namesFile(const std::string& message, const std::string& name) {
+  for (std::size_t at = message.find(name); at != std::string::npos; at = message.find(name, at + 1)) {
+    const char before = at == 0 ? ' ' : message[at - 1];
+    const std::size_t end = at + name.size();
+    const bool wordStart = !(std::isalnum(static_cast<unsigned char>(before)) || before == '_' || before == '-' ||
+                             before == '.' || before == '(' || before == ')' || before == '+');
+    if (wordStart && (end == message.size() || message[end] == ':' || message[end] == ' ' || message[end] == ','))
+      return true;
+  }
+  return false;
+}
+
+// The form field an importer's message is about: the file it names (by its staged path or its
+// name), or the field it starts with ("cuts: ..."); "" when it names none.
+std::string fieldOfMessage(const std::string& message, const PatientUpload& upload, const std::string& folder) {
+  for (const UploadedFile& f : upload.files)
+    if (!folder.empty() && message.find(folder + f.fileName) != std::string::npos) return f.field;
+  for (const UploadedFile& f : upload.files)
+    if (!f.fileName.empty() && namesFile(message, f.fileName)) return f.field;
+  for (const char* field : {"cuts", "units", "oral_cavity", "name", "landmarks", "texture", "cavity", "skin", "skull",
+                            "mandible", "label_map", "tissue_labels", "skull_labels", "mandible_labels"})
+    if (message.rfind(std::string(field) + ":", 0) == 0) return field;
+  return "";
+}
+
 // The staging folder is removed on every way out.
 struct StagingFolder {
   fs::path path;
@@ -178,6 +207,15 @@ std::string chooseSeries(const fs::path& folder, const std::string& requested, s
 
 bool isUploadField(const std::string& field) { return fieldEndings().count(field) > 0; }
 
+void stageUploadedFile(const UploadedFile& file, const fs::path& to) {
+  try {
+    copySlice(file.bytes, to);
+  } catch (const std::exception& e) {
+    std::cerr << "orthosim serve: cannot stage an upload's file: " << e.what() << "\n";
+    throw PatientImportError("import_failed", file.field, "cannot stage " + file.fileName + " in the data folder");
+  }
+}
+
 PatientImporter::PatientImporter(fs::path dataDir, CaseLibrary& cases) : dataDir_(std::move(dataDir)), cases_(cases) {}
 
 ImportedPatient PatientImporter::import(const PatientUpload& upload) {
@@ -202,7 +240,7 @@ ImportedPatient PatientImporter::import(const PatientUpload& upload) {
     for (const UploadedFile& f : upload.files)
       if (f.field == "dicom_zip") {
         const fs::path zip = staging.path / "scan.zip";
-        std::ofstream(zip, std::ios::binary).write(f.data.data(), static_cast<std::streamsize>(f.data.size()));
+        stageUploadedFile(f, zip);
         unpackScanZip(zip, series);
         fs::remove(zip);
       }
@@ -211,9 +249,7 @@ ImportedPatient PatientImporter::import(const PatientUpload& upload) {
   }
   for (const UploadedFile& f : upload.files) {
     const fs::path file = staging.path / f.fileName;
-    std::ofstream(file, std::ios::binary).write(f.data.data(), static_cast<std::streamsize>(f.data.size()));
-    if (fs::file_size(file) != f.data.size())
-      throw PatientImportError("import_failed", f.field, "cannot stage " + f.fileName + " in the data folder");
+    stageUploadedFile(f, file);
     if (f.field == "skin") input.skin = file.string();
     if (f.field == "skull") input.skull = file.string();
     if (f.field == "mandible") input.mandible = file.string();
@@ -251,7 +287,7 @@ ImportedPatient PatientImporter::importScanIn(const PatientUpload& upload, CaseI
   for (const UploadedFile& f : upload.files)  // landmarks may come with a scan
     if (f.field == "landmarks") {
       const fs::path file = series.parent_path() / ("landmarks-" + safeBaseName(f.fileName));
-      std::ofstream(file, std::ios::binary).write(f.data.data(), static_cast<std::streamsize>(f.data.size()));
+      stageUploadedFile(f, file);
       input.landmarks = file.string();
     }
   return importChecked(upload, input, out, series.string(), "the scan");
@@ -260,10 +296,17 @@ ImportedPatient PatientImporter::importScanIn(const PatientUpload& upload, CaseI
 ImportedPatient PatientImporter::importChecked(const PatientUpload& upload, CaseImportInput& input, const fs::path& out,
                                                const std::string& folder, const std::string& folderName) {
   ImportedPatient imported;
+  // One rule for accepting and opening: the import builds the coarse model a session opens (its
+  // tissue cached where the server looks) and reads the texture as the renderer does.
+  input.checkOpens = true;
+  input.cacheDir = (dataDir_ / "cache").string();
+  input.opens = [](const std::string& caseFile) { (void)render::caseTexture(loadCaseFile(caseFile)); };
   try {
     imported.report = importCase(input, out.string());
   } catch (const std::exception& e) {  // the importer's checks (CaseImportError) and the case file's
-    throw PatientImportError("import_failed", "", withoutFolder(e.what(), folder, folderName));
+    const std::string field = fieldOfMessage(e.what(), upload, folder);
+    throw PatientImportError("import_failed", field.empty() && folderName == "the scan" ? "dicom" : field,
+                             withoutFolder(e.what(), folder, folderName));
   }
   for (std::vector<std::string>* lines :
        {&imported.report.warnings, &imported.report.scan, &imported.report.built, &imported.report.suggested})

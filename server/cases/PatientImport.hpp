@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cases/CaseLibrary.hpp"
+#include "cases/FileSlice.hpp"
 #include "cases/ScanChoice.hpp"
 #include "scene/CaseImport.hpp"
 #include "volume/DicomSeries.hpp"
@@ -21,7 +22,7 @@ namespace orthosim::server {
 struct UploadedFile {
   std::string field;     // skin, skull, mandible, label_map, cavity, texture, landmarks, dicom or dicom_zip
   std::string fileName;  // as the user's machine named it
-  std::string data;
+  FileSlice bytes;       // in the upload's body, on disk
 };
 
 struct PatientUpload {
@@ -66,6 +67,10 @@ std::string withoutFolder(std::string message, const std::string& folder, const 
 
 // The fields a file may come in, and the file name endings each takes.
 bool isUploadField(const std::string& field);
+
+// Copies the file's bytes from the upload's body to `to`. Throws PatientImportError import_failed
+// naming the file (the system's reason, with the paths, goes to the log).
+void stageUploadedFile(const UploadedFile& file, const std::filesystem::path& to);
 
 class PatientImporter {
  public:

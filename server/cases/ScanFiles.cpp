@@ -78,9 +78,7 @@ int stageScanFiles(const std::vector<UploadedFile>& files, const fs::path& folde
       throw PatientImportError("bad_file", "dicom",
                                "dicom: more than " + std::to_string(maxFiles) + " files; send one series' folder");
     const fs::path file = folder / uniqueName(base, used);
-    std::ofstream(file, std::ios::binary).write(f.data.data(), static_cast<std::streamsize>(f.data.size()));
-    if (fs::file_size(file) != f.data.size())
-      throw PatientImportError("import_failed", "dicom", "cannot stage " + base + " in the data folder");
+    stageUploadedFile(f, file);
   }
   if (written == 0) throw PatientImportError("missing_file", "dicom", "dicom: no files; choose the scan's folder");
   return written;

@@ -109,7 +109,7 @@ StagedScan ScanStore::stage(const std::vector<UploadedFile>& files) {
       if (lower.size() < 5 || lower.compare(lower.size() - 4, 4, ".zip") != 0)
         throw PatientImportError("bad_file", "dicom_zip", "dicom_zip: '" + f.fileName + "' is not a .zip");
       const fs::path archive = scan->folder / "scan.zip";
-      std::ofstream(archive, std::ios::binary).write(f.data.data(), static_cast<std::streamsize>(f.data.size()));
+      stageUploadedFile(f, archive);
       unpackScanZip(archive, series);
       fs::remove(archive);
     }

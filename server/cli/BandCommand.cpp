@@ -9,6 +9,7 @@
 
 #include "cli/Commands.hpp"
 #include "eval/PredictionBandJson.hpp"
+#include "mesh/AtomicFile.hpp"
 #include "mesh/SurfaceImport.hpp"
 #include "scene/PlanFile.hpp"
 
@@ -17,20 +18,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void writeText(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw std::runtime_error(tmp.string() + ": write failed");
-  }
-  fs::rename(tmp, path);
-}
+void writeText(const fs::path& path, const std::string& text) { writeFileAtomically(path, text); }
 
 void writeSurface(const SurfaceMesh& s, const fs::path& path) {
-  const fs::path tmp = path.parent_path() / ("tmp." + path.filename().string());
-  exportSurface(s, tmp.string());
-  fs::rename(tmp, path);
+  writeFileAtomicallyWith(path, [&](const fs::path& tmp) { exportSurface(s, tmp.string()); });
 }
 
 void printBand(const PredictionBand& band, std::ostream& out) {

@@ -204,6 +204,7 @@ struct ServeOptions {
   int previewIterations = 100;       // what one preview may spend (server::PlanningOptions)
   double previewSeconds = 15;
   int maxUploadMb = 256;         // a patient's upload from the page (net::HttpLimits::uploadBytes)
+  int maxUploads = 4;            // uploads received or imported at once (net::HttpLimits::maxUploads)
   int scanExpirySeconds = 1800;  // a scan staged for import (POST /api/scans) is removed when unused this long
   int maxStagedScans = 3;        // scans staged at once
   std::string redis;             // "redis://HOST:PORT": fine jobs on `orthosim worker` processes; empty: in process

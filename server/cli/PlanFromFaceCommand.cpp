@@ -87,9 +87,8 @@ int runPlanFromFace(const PlanFromFaceOptions& o) {
     writeFileAtomically(fs::path(o.outDir) / "plan.json",
                         casePlanJson(planFromPoses(fragments, r.poses, c->spec.frame)).dump(2) + "\n");
     if (c->tissue.skin.numVertices() > 0) {
-      const fs::path tmp = fs::path(o.outDir) / "skin.tmp.obj";
-      exportSurface(c->deformedSkin(r.state.x), tmp.string());
-      fs::rename(tmp, fs::path(o.outDir) / "skin.obj");
+      writeFileAtomicallyWith(fs::path(o.outDir) / "skin.obj",
+                              [&](const fs::path& tmp) { exportSurface(c->deformedSkin(r.state.x), tmp.string()); });
     }
   } catch (const std::exception& e) {
     std::cerr << "orthosim: cannot write results to " << o.outDir << ": " << e.what() << "\n";

@@ -38,6 +38,7 @@ net::ServerOptions serverOptions(const ServeOptions& options) {
   fs::create_directories(server.planning.dataDir);
   server.planning.cases = caseCatalog(options.builtinDir, options.casesDir, "serve");
   server.limits.uploadBytes = static_cast<std::size_t>(options.maxUploadMb) * 1024 * 1024;
+  server.limits.maxUploads = options.maxUploads;
   server.planning.scanExpiry = std::chrono::seconds(options.scanExpirySeconds);
   server.planning.maxStagedScans = options.maxStagedScans;
   server.planning.fineWorkers = options.fineWorkers;

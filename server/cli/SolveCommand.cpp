@@ -70,21 +70,21 @@ int runSolve(const std::string& scenePath, const std::string& outDir, const Solv
   const SolveResult result = solveScene(*model);
   try {
     fs::create_directories(outDir);
-    const fs::path tmpNode = fs::path(outDir) / "deformed.node.tmp";
-    writeTetgenNodes(tmpNode.string(), result.state.x, model->scene().indexBase);
-    fs::rename(tmpNode, fs::path(outDir) / "deformed.node");
+    writeFileAtomicallyWith(fs::path(outDir) / "deformed.node", [&](const fs::path& tmp) {
+      writeTetgenNodes(tmp.string(), result.state.x, model->scene().indexBase);
+    });
     nlohmann::json json = resultToJson(*model, result);
     if (caseModel) {
       // A meshed case's tetrahedra exist nowhere else: write them beside the deformed nodes.
       writeTetgenNodes((fs::path(outDir) / "rest.node").string(), model->scene().mesh.rest, 0);
       writeTetgenElements((fs::path(outDir) / "rest.ele").string(), model->scene().mesh.tets, 0);
       if (caseModel->tissue.skin.numVertices() > 0) {
-        const fs::path tmp = fs::path(outDir) / "skin.tmp.obj";
-        exportSurface(caseModel->deformedSkin(result.state.x), tmp.string());
-        fs::rename(tmp, fs::path(outDir) / "skin.obj");
+        writeFileAtomicallyWith(fs::path(outDir) / "skin.obj", [&](const fs::path& tmp) {
+          exportSurface(caseModel->deformedSkin(result.state.x), tmp.string());
+        });
         // The same skin at rest (same triangles): where `orthosim compare --rest` places landmarks.
-        exportSurface(caseModel->tissue.skin, tmp.string());
-        fs::rename(tmp, fs::path(outDir) / "skin_rest.obj");
+        writeFileAtomicallyWith(fs::path(outDir) / "skin_rest.obj",
+                                [&](const fs::path& tmp) { exportSurface(caseModel->tissue.skin, tmp.string()); });
       }
       json["case"] = caseJson(*caseModel);
     }

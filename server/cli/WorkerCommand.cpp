@@ -22,9 +22,8 @@ int runWorker(const WorkerOptions& options) {
     // Shared with the servers started with --redis and the other workers; refused while a server
     // without --redis has the folder to itself.
     server::DataFolderLock lock(worker.dataDir, server::DataFolderUse::Shared, "orthosim worker");
-    if (lock.alone())
-      for (const std::string& leftover : server::removeLeftovers(worker.dataDir))
-        std::cerr << "orthosim worker: removed " << leftover << ", left by an interrupted write\n";
+    for (const std::string& leftover : server::removeLeftovers(worker.dataDir, lock.alone()))
+      std::cerr << "orthosim worker: removed " << leftover << ", left by an interrupted write\n";
     lock.share();
     worker.cases = caseCatalog(options.builtinDir, options.casesDir, "worker");
     worker.concurrency = options.concurrency;

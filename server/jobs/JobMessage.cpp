@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "cases/Identifier.hpp"
-#include "mesh/TemporaryName.hpp"
+#include "mesh/AtomicFile.hpp"
 
 namespace orthosim::server {
 using nlohmann::json;
@@ -190,24 +190,12 @@ static constexpr char kNodesMagic[] = "orthosim-nodes-1\n";
 void writeResultNodes(const std::filesystem::path& file, const Eigen::Matrix3Xd& x) {
   namespace fs = std::filesystem;
   fs::create_directories(file.parent_path());
-  const fs::path tmp = file.string() + ".part-" + temporarySuffix();
-  {
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw std::runtime_error("cannot write " + tmp.string() + ": " + std::strerror(errno));
-    const std::uint64_t n = static_cast<std::uint64_t>(x.cols());
-    bool ok = std::fwrite(kNodesMagic, 1, sizeof kNodesMagic - 1, f) == sizeof kNodesMagic - 1 &&
-              std::fwrite(&n, sizeof n, 1, f) == 1 &&
-              std::fwrite(x.data(), sizeof(double), static_cast<size_t>(x.size()), f) == static_cast<size_t>(x.size());
-    ok = std::fflush(f) == 0 && ok;
-    ok = ::fsync(::fileno(f)) == 0 && ok;
-    ok = std::fclose(f) == 0 && ok;
-    if (!ok) {
-      std::error_code ignored;
-      fs::remove(tmp, ignored);
-      throw std::runtime_error("cannot write " + tmp.string() + ": " + std::strerror(errno));
-    }
-  }
-  fs::rename(tmp, file);
+  AtomicFile out(file, file.filename().string() + ".part-");  // removed when a write fails (a full disk)
+  const std::uint64_t n = static_cast<std::uint64_t>(x.cols());
+  out.out().write(kNodesMagic, sizeof kNodesMagic - 1);
+  out.out().write(reinterpret_cast<const char*>(&n), sizeof n);
+  out.out().write(reinterpret_cast<const char*>(x.data()), static_cast<std::streamsize>(sizeof(double) * x.size()));
+  out.commit(Durability::Synced);
 }
 
 Eigen::Matrix3Xd readResultNodes(const std::filesystem::path& file, long long nodes) {

@@ -12,13 +12,6 @@ std::string replicaSet(const std::string& replica) { return "orthosim:replica-jo
 
 }  // namespace
 
-long long nextJobNumber(RedisConnection& redis) {
-  // Numbers above a billion: never those of the server's own queue (band jobs), so that cancel
-  // finds the one job.
-  redis.command({"SET", "orthosim:job-number", "1000000000", "NX"});
-  return redis.command({"INCR", "orthosim:job-number"}).integer;
-}
-
 void saveJobRecord(RedisConnection& redis, const std::string& replica, const JobRecord& r) {
   const std::string key = recordKey(r.job);
   redis.command({"HSET", key, "owner", r.owner, "case", r.caseId, "entry", r.entry, "context", r.context.dump()});

@@ -20,9 +20,6 @@ struct JobRecord {
   nlohmann::json context;  // what the session needs to publish the outcome (its poses)
 };
 
-// A job number no server on this Redis has used: 1000000001, 1000000002, ... (INCR).
-long long nextJobNumber(RedisConnection& redis);
-
 void saveJobRecord(RedisConnection& redis, const std::string& replica, const JobRecord& record);
 void setJobOwner(RedisConnection& redis, const std::string& job, const std::string& owner);
 void forgetJobRecord(RedisConnection& redis, const std::string& replica, const std::string& job);

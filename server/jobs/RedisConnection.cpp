@@ -102,7 +102,10 @@ RedisValue RedisConnection::command(const std::vector<std::string>& args) {
   }
   void* raw = redisCommandArgv(context_, static_cast<int>(args.size()), argv.data(), lengths.data());
   if (!raw) {
+    const int error = errno;  // hiredis 0.14 reports a timed-out read or write as an I/O error with EAGAIN
     const std::string why = context_->err ? context_->errstr : "no reply";
+    if (context_->err == REDIS_ERR_IO && (error == EAGAIN || error == EWOULDBLOCK || error == ETIMEDOUT))
+      throw RedisTimeout("Redis at " + address_.text + " did not answer in time: " + why);
     throw RedisUnavailable("lost the connection to Redis at " + address_.text + ": " + why);
   }
   std::unique_ptr<redisReply, void (*)(void*)> reply(static_cast<redisReply*>(raw), freeReplyObject);

@@ -20,6 +20,12 @@ class RedisUnavailable : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Redis did not answer within the connection's timeout (it may still have run the command).
+class RedisTimeout : public RedisUnavailable {
+ public:
+  using RedisUnavailable::RedisUnavailable;
+};
+
 // Redis answered a command with an error (e.g. BUSYGROUP, a wrong type).
 class RedisCommandError : public std::runtime_error {
  public:
@@ -56,7 +62,8 @@ class RedisConnection {
   RedisConnection& operator=(const RedisConnection&) = delete;
 
   // Runs one command. Throws RedisUnavailable when the connection is broken (after which this
-  // object is unusable), RedisCommandError when Redis answers with an error.
+  // object is unusable; RedisTimeout when Redis did not answer in time), RedisCommandError when
+  // Redis answers with an error.
   RedisValue command(const std::vector<std::string>& args);
   // The timeout of each command's socket read and write (a blocking XREAD waits less than it).
   void setTimeout(std::chrono::milliseconds timeout);

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "jobs/JobMessage.hpp"
+#include "jobs/JobNumbers.hpp"
 #include "jobs/JobRecords.hpp"
 #include "jobs/JobStream.hpp"
 #include "session/RandomId.hpp"
@@ -13,6 +14,14 @@ using nlohmann::json;
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
+namespace {
+
+// Of each command on the command connection (submit, cancel: the session's thread waits for it). A
+// healthy Redis answers in well under a millisecond; one that does not answer within this is lost.
+constexpr std::chrono::milliseconds kCommandTimeout{1000};
+
+}  // namespace
+
 RedisFineJobs::RedisFineJobs(const RedisAddress& redis, CaseLibrary& cases, fs::path dataDir, int capacity,
                              RedisJobsOptions options)
     : address_(redis),
@@ -20,10 +29,11 @@ RedisFineJobs::RedisFineJobs(const RedisAddress& redis, CaseLibrary& cases, fs::
       dataDir_(std::move(dataDir)),
       capacity_(capacity),
       options_(std::move(options)),
-      durable_(!options_.replica.empty()) {
+      durable_(!options_.replica.empty()),
+      numbers_(dataDir_) {
   serverId_ = durable_ ? checkedReplicaName(options_.replica) : "s" + randomHexId().substr(0, 15);
   replyStream_ = replyStreamName(serverId_);
-  commands_ = std::make_unique<RedisConnection>(address_);
+  commands_ = std::make_unique<RedisConnection>(address_, kCommandTimeout);
   ensureWorkerGroup(*commands_);
   if (durable_) {
     claim_.emplace(*commands_, serverId_);
@@ -61,8 +71,26 @@ void RedisFineJobs::adoptRecords() {
 RedisFineJobs::~RedisFineJobs() { shutdown(); }
 
 RedisConnection& RedisFineJobs::commands() {
-  if (!commands_) commands_ = std::make_unique<RedisConnection>(address_);
+  if (!reachable_)
+    throw RedisUnavailable("Redis at " + address_.text + " cannot be reached; the server tries again every second");
+  if (!commands_) commands_ = std::make_unique<RedisConnection>(address_, kCommandTimeout);
   return *commands_;
+}
+
+template <class Run>
+auto RedisFineJobs::retryingOnce(const Run& run) {
+  const bool fresh = !commands_;
+  try {
+    return run(commands());
+  } catch (const RedisTimeout&) {  // Redis is there but slow, or gone without a word: not twice the wait
+    commands_.reset();
+    throw;
+  } catch (const RedisUnavailable& e) {
+    commands_.reset();
+    if (fresh || !reachable_) throw;
+    std::cerr << "orthosim serve: the command connection was broken (" << e.what() << "); connecting again\n";
+    return run(commands());
+  }
 }
 
 std::optional<SubmittedJob> RedisFineJobs::submit(FineJobRequest request, FineJobCallbacks callbacks) {
@@ -96,8 +124,10 @@ std::optional<SubmittedJob> RedisFineJobs::submit(FineJobRequest request, FineJo
   int position = 0;
   const std::lock_guard<std::mutex> commandLock(commandMutex_);
   try {
+    // The first command on the connection: a number skipped by a second try is harmless, a job
+    // added twice is not, so only this step is tried again on a connection found dead.
+    job.id = retryingOnce([this](RedisConnection& redis) { return numbers_.next(redis); });
     RedisConnection& redis = commands();
-    job.id = nextJobNumber(redis);
     job.name = m.job = serverId_ + "-" + std::to_string(job.id);
     {  // known before a worker can answer
       const std::lock_guard<std::mutex> lock(mutex_);
@@ -129,6 +159,12 @@ std::optional<SubmittedJob> RedisFineJobs::submit(FineJobRequest request, FineJo
     }
     if (dynamic_cast<const RedisCommandError*>(&e))
       throw JobsUnavailable(std::string("the fine-job queue refused the job (") + e.what() + ")");
+    if (dynamic_cast<const JobNumberRecordError*>(&e)) {
+      std::cerr << "orthosim serve: " << e.what() << "\n";
+      throw JobsUnavailable(
+          "the job's number cannot be recorded in the data folder (the server log says why); "
+          "the job was not queued");
+    }
     throw;
   }
   return SubmittedJob{job.id, position};
@@ -136,10 +172,11 @@ std::optional<SubmittedJob> RedisFineJobs::submit(FineJobRequest request, FineJo
 
 bool RedisFineJobs::setCancel(const Job& job) {
   try {
-    RedisConnection& redis = commands();
-    redis.command({"SET", cancelKey(job.name), "1", "EX", "86400"});
-    if (!job.started && !job.entry.empty()) redis.command({"XDEL", kJobStream, job.entry});
-    if (durable_) forgetJobRecord(redis, serverId_, job.name);
+    retryingOnce([&](RedisConnection& redis) {
+      redis.command({"SET", cancelKey(job.name), "1", "EX", "86400"});
+      if (!job.started && !job.entry.empty()) redis.command({"XDEL", kJobStream, job.entry});
+      if (durable_) forgetJobRecord(redis, serverId_, job.name);
+    });
     return true;
   } catch (const std::exception& e) {
     commands_.reset();
@@ -152,7 +189,7 @@ void RedisFineJobs::forget(const Job& job) {
   if (!durable_) return;
   const std::lock_guard<std::mutex> lock(commandMutex_);
   try {
-    forgetJobRecord(commands(), serverId_, job.name);
+    retryingOnce([&](RedisConnection& redis) { forgetJobRecord(redis, serverId_, job.name); });
   } catch (const std::exception& e) {
     commands_.reset();  // the record expires by itself; a later run would cancel the job, done already
     std::cerr << "orthosim serve: cannot drop the record of job " << job.name << ": " << e.what() << "\n";
@@ -248,7 +285,9 @@ void RedisFineJobs::resume(const std::string& former, const std::string& owner, 
   if (durable_ && !names.empty()) {
     const std::lock_guard<std::mutex> lock(commandMutex_);
     try {
-      for (const std::string& name : names) setJobOwner(commands(), name, owner);
+      retryingOnce([&](RedisConnection& redis) {
+        for (const std::string& name : names) setJobOwner(redis, name, owner);
+      });
     } catch (const std::exception& e) {
       commands_.reset();
       std::cerr << "orthosim serve: cannot record the new session of resumed jobs: " << e.what() << "\n";
@@ -336,7 +375,17 @@ void RedisFineJobs::relay() {
       if (!redis) {
         redis = std::make_unique<RedisConnection>(address_);
         redis->setTimeout(5s);
-        if (lost) std::cerr << "orthosim serve: the fine-job queue at " << address_.text << " is back\n";
+        if (lost) {
+          // The command connection died with Redis: a new one before anyone's next command, which
+          // the old one would fail.
+          auto fresh = std::make_unique<RedisConnection>(address_, kCommandTimeout);
+          {
+            const std::lock_guard<std::mutex> lock(commandMutex_);
+            commands_ = std::move(fresh);
+          }
+          reachable_ = true;
+          std::cerr << "orthosim serve: the fine-job queue at " << address_.text << " is back\n";
+        }
         lost = false;
       }
       if (claim_ && std::chrono::steady_clock::now() - renewed > kReplicaLease / 4) {
@@ -361,6 +410,7 @@ void RedisFineJobs::relay() {
       if (durable_) redis->command({"XTRIM", replyStream_, "MINID", last});  // read: not again after a restart
     } catch (const std::exception& e) {
       redis.reset();
+      if (dynamic_cast<const RedisUnavailable*>(&e)) reachable_ = false;
       if (!lost) {
         std::cerr << "orthosim serve: " << e.what() << "\n";
         failAll(e.what());

@@ -7,7 +7,10 @@
 // the job's cancel key, which the worker checks between Newton iterations.
 //
 // Redis unreachable on submit: JobsUnavailable (never the in-process pool instead). The
-// connection lost while jobs are out: each gets job_failed saying so; the relay reconnects.
+// connection lost while jobs are out: each gets job_failed saying so; the relay reconnects, and
+// when Redis answers again it opens a new command connection too, so the first submit after an
+// outage works. While the relay finds Redis unreachable, submit is refused at once: no command
+// waits on the session's thread for an absent Redis. Job numbers: jobs/JobNumbers.
 //
 // Nothing lost (a server with a replica name, `serve --replica`): each job is recorded on Redis
 // (jobs/JobRecords) until its outcome reaches a session. A job whose session is gone (connection
@@ -25,6 +28,7 @@
 #include <thread>
 
 #include "jobs/FineJobs.hpp"
+#include "jobs/JobNumbers.hpp"
 #include "jobs/RedisConnection.hpp"
 #include "jobs/ReplicaClaim.hpp"
 
@@ -83,7 +87,13 @@ class RedisFineJobs : public FineJobs {
   void cancelExpiredOrphans();  // nobody resumed them within the grace
   void forget(const Job& job);  // its record, when the replica keeps records
   // With commandMutex_ held: the submit/cancel connection, connected again when it was lost.
+  // Throws RedisUnavailable at once while the relay finds Redis unreachable.
   RedisConnection& commands();
+  // With commandMutex_ held: `run` on commands(); when that connection proves dead (broken at once,
+  // as after a Redis restart, not timed out), once more on a new one. Only for commands that may
+  // run twice (a number skipped, a key set twice).
+  template <class Run>
+  auto retryingOnce(const Run& run);
   bool setCancel(const Job& job);  // with commandMutex_ held; false when Redis cannot be reached
 
   RedisAddress address_;
@@ -98,9 +108,11 @@ class RedisFineJobs : public FineJobs {
 
   std::mutex commandMutex_;
   std::unique_ptr<RedisConnection> commands_;
+  JobNumbers numbers_;                 // with commandMutex_ held
+  std::atomic<bool> reachable_{true};  // false from the relay losing Redis until it answers again
 
   mutable std::mutex mutex_;
-  std::map<long long, Job> jobs_;  // by job number (jobs/JobRecords nextJobNumber)
+  std::map<long long, Job> jobs_;  // by job number (numbers_)
 
   std::atomic<bool> stopping_{false};
   std::thread relay_;

@@ -1,5 +1,7 @@
 #include "net/JsonResponses.hpp"
 
+#include "session/ClientText.hpp"
+
 namespace orthosim::net {
 
 void setCommonHeaders(http::response_header<>& header) {
@@ -22,7 +24,7 @@ StringResponse jsonResponse(http::status status, const nlohmann::json& body, con
 
 StringResponse jsonError(http::status status, std::string_view code, const std::string& message, std::string_view path,
                          const ReplyTo& to) {
-  return jsonResponse(status, {{"error", code}, {"message", message}, {"path", path}}, to);
+  return jsonResponse(status, {{"error", code}, {"message", server::withoutServerPaths(message)}, {"path", path}}, to);
 }
 
 }  // namespace orthosim::net

@@ -42,12 +42,19 @@ std::string parameter(std::string_view header, std::string_view key) {
   return {};
 }
 
-FormPart parsePart(std::string_view part, std::size_t index) {
-  const std::size_t headersEnd = part.find("\r\n\r\n");
+constexpr std::size_t kMaxPartHeaders = 16 * 1024;
+
+// The part from `start` to `end` (the CRLF before the next delimiter).
+FormPartSpan locatePart(FormBytes& body, std::uint64_t start, std::uint64_t end, std::size_t index) {
+  const std::string head =
+      body.read(start, static_cast<std::size_t>(std::min<std::uint64_t>(end - start, kMaxPartHeaders)));
+  const std::size_t headersEnd = head.find("\r\n\r\n");
   const std::string where = "form part " + std::to_string(index + 1);
-  if (headersEnd == std::string_view::npos) throw FormError(where + " has no blank line after its headers");
-  FormPart p;
-  std::string_view headers = part.substr(0, headersEnd);
+  if (headersEnd == std::string::npos)
+    throw FormError(where + (head.size() == kMaxPartHeaders ? " has headers longer than 16 KiB"
+                                                            : " has no blank line after its headers"));
+  FormPartSpan p;
+  std::string_view headers = std::string_view(head).substr(0, headersEnd);
   while (!headers.empty()) {
     const std::size_t eol = headers.find("\r\n");
     const std::string_view line = headers.substr(0, eol);
@@ -65,9 +72,27 @@ FormPart parsePart(std::string_view part, std::size_t index) {
     }
   }
   if (p.name.empty()) throw FormError(where + " has no field name (Content-Disposition: form-data; name=...)");
-  p.data = std::string(part.substr(headersEnd + 4));
+  p.offset = start + headersEnd + 4;
+  p.size = end - p.offset;
   return p;
 }
+
+// A body held in memory.
+class StringBytes : public FormBytes {
+ public:
+  explicit StringBytes(std::string_view body) : body_(body) {}
+  std::uint64_t size() const override { return body_.size(); }
+  std::string read(std::uint64_t at, std::size_t n) override {
+    return at >= body_.size() ? std::string() : std::string(body_.substr(static_cast<std::size_t>(at), n));
+  }
+  std::uint64_t find(std::string_view needle, std::uint64_t from) override {
+    const std::size_t at = from > body_.size() ? std::string_view::npos : body_.find(needle, from);
+    return at == std::string_view::npos ? npos : at;
+  }
+
+ private:
+  std::string_view body_;
+};
 
 }  // namespace
 
@@ -81,25 +106,37 @@ std::string formBoundary(std::string_view contentType) {
   return boundary;
 }
 
-std::vector<FormPart> parseMultipartForm(std::string_view body, std::string_view boundary) {
+std::vector<FormPartSpan> locateFormParts(FormBytes& body, std::string_view boundary) {
   const std::string delimiter = "--" + std::string(boundary);
   const std::string separator = "\r\n" + delimiter;
   // The first delimiter may open the body directly (no preamble), so search from a virtual CRLF.
-  std::size_t at = body.rfind(delimiter, 0) == 0 ? 0 : body.find(separator);
-  if (at == std::string_view::npos) throw FormError("the form body has no part (no '" + delimiter + "' line)");
-  at += at == 0 ? delimiter.size() : separator.size();
-  std::vector<FormPart> parts;
+  const bool opens = body.read(0, delimiter.size()) == delimiter;
+  std::uint64_t at = opens ? 0 : body.find(separator, 0);
+  if (at == FormBytes::npos) throw FormError("the form body has no part (no '" + delimiter + "' line)");
+  at += opens ? delimiter.size() : separator.size();
+  std::vector<FormPartSpan> parts;
   for (;;) {
-    if (body.compare(at, 2, "--") == 0) return parts;  // the closing delimiter
-    if (body.compare(at, 2, "\r\n") != 0) throw FormError("form delimiter line not ended by CRLF");
+    const std::string next2 = body.read(at, 2);
+    if (next2 == "--") return parts;  // the closing delimiter
+    if (next2 != "\r\n") throw FormError("form delimiter line not ended by CRLF");
     at += 2;
-    const std::size_t next = body.find(separator, at);
-    if (next == std::string_view::npos)
+    const std::uint64_t next = body.find(separator, at);
+    if (next == FormBytes::npos)
       throw FormError("the form body ends inside part " + std::to_string(parts.size() + 1) +
                       " (no closing boundary: was the upload cut off?)");
-    parts.push_back(parsePart(body.substr(at, next - at), parts.size()));
+    parts.push_back(locatePart(body, at, next, parts.size()));
     at = next + separator.size();
   }
+}
+
+std::vector<FormPart> parseMultipartForm(std::string_view body, std::string_view boundary) {
+  StringBytes bytes(body);
+  std::vector<FormPart> parts;
+  for (const FormPartSpan& span : locateFormParts(bytes, boundary))
+    parts.push_back(
+        {span.name, span.fileName, span.contentType,
+         std::string(body.substr(static_cast<std::size_t>(span.offset), static_cast<std::size_t>(span.size)))});
+  return parts;
 }
 
 }  // namespace orthosim::net

@@ -7,6 +7,7 @@
 #include "net/JsonResponses.hpp"
 #include "net/RequestTarget.hpp"
 #include "net/ScanRoutes.hpp"
+#include "scene/CaseImport.hpp"
 
 namespace orthosim::net {
 namespace {
@@ -53,32 +54,44 @@ bool isPatientUpload(const Request& request) {
   return target && target->path == kPatientsPath;
 }
 
-server::PatientUpload patientUploadFromForm(const std::vector<FormPart>& parts) {
+void checkCutTemplates(const std::vector<std::string>& cuts) {
+  for (const std::string& cut : cuts) try {
+      boneOfTemplate(cut);
+    } catch (const std::exception& e) {  // names the template and the known ones
+      throw server::PatientImportError("bad_field", "cuts", e.what());
+    }
+}
+
+server::PatientUpload patientUploadFromForm(const UploadRequest& request, const std::vector<FormPartSpan>& parts) {
   using server::PatientImportError;
   server::PatientUpload upload;
-  for (const FormPart& p : parts) {
+  for (const FormPartSpan& p : parts) {
     if (server::isUploadField(p.name)) {
-      upload.files.push_back({p.name, p.fileName, p.data});
-    } else if (!p.fileName.empty()) {
+      upload.files.push_back({p.name, p.fileName, formFile(request, p)});
+      continue;
+    }
+    if (!p.fileName.empty())
       throw PatientImportError("bad_field", p.name, p.name + ": a file in a field that takes none");
-    } else if (p.name == "id") {
-      upload.id = p.data;
+    const std::string text = formText(request, p);
+    if (p.name == "id") {
+      upload.id = text;
     } else if (p.name == "name") {
-      if (p.data.size() > 200) throw PatientImportError("bad_field", "name", "name: longer than 200 characters");
-      upload.name = p.data;
+      if (text.size() > 200) throw PatientImportError("bad_field", "name", "name: longer than 200 characters");
+      upload.name = text;
     } else if (p.name == "units") {
-      upload.units = p.data;
+      upload.units = text;
     } else if (p.name == "oral_cavity") {
-      upload.oralCavity = p.data;
+      upload.oralCavity = text;
     } else if (p.name == "cuts") {
-      for (const std::string& cut : commaList(p.data)) upload.cuts.push_back(cut);
+      for (const std::string& cut : commaList(text)) upload.cuts.push_back(cut);
+      checkCutTemplates(upload.cuts);
     } else if (server::isScanChoiceField(p.name)) {
-      server::setScanChoiceField(upload.scan, p.name, p.data);
+      server::setScanChoiceField(upload.scan, p.name, text);
     } else if (p.name == "tissue_labels" || p.name == "skull_labels" || p.name == "mandible_labels") {
       std::vector<int>& labels = p.name == "tissue_labels"  ? upload.tissueLabels
                                  : p.name == "skull_labels" ? upload.skullLabels
                                                             : upload.mandibleLabels;
-      labels = labelNumbers(p.name, p.data);
+      labels = labelNumbers(p.name, text);
     } else {
       throw PatientImportError(
           "bad_field", p.name,
@@ -89,26 +102,28 @@ server::PatientUpload patientUploadFromForm(const std::vector<FormPart>& parts) 
     }
   }
   // A browser sends an empty part for a file input left empty: that is no file.
-  upload.files.erase(std::remove_if(upload.files.begin(), upload.files.end(),
-                                    [](const server::UploadedFile& f) { return f.fileName.empty() && f.data.empty(); }),
-                     upload.files.end());
+  upload.files.erase(
+      std::remove_if(upload.files.begin(), upload.files.end(),
+                     [](const server::UploadedFile& f) { return f.fileName.empty() && f.bytes.size == 0; }),
+      upload.files.end());
   return upload;
 }
 
-void importPatient(server::PlanningService& service, Request request, std::function<void(StringResponse)> done) {
-  boost::asio::post(service.importPool(), [&service, request = std::move(request), done = std::move(done)] {
-    const ReplyTo to = replyTo(request);
+void importPatient(server::PlanningService& service, UploadRequest request, std::function<void(StringResponse)> done) {
+  boost::asio::post(service.importPool(), [&service, request = std::move(request), done = std::move(done)]() mutable {
+    const ReplyTo to = replyTo(request.head);
+    StringResponse reply;
     try {
-      const std::vector<FormPart> parts = formParts(request);
-      const server::ImportedPatient imported = service.patients().import(patientUploadFromForm(parts));
-      done(jsonResponse(http::status::created, importedJson(imported), to));
-    } catch (const FormError& e) {
-      done(jsonError(http::status::bad_request, "bad_form", e.what(), kPatientsPath, to));
+      const std::vector<FormPartSpan> parts = formParts(request);
+      const server::ImportedPatient imported = service.patients().import(patientUploadFromForm(request, parts));
+      reply = jsonResponse(http::status::created, importedJson(imported), to);
     } catch (const server::PatientImportError& e) {
-      done(importErrorReply(e, kPatientsPath, to));
+      reply = importErrorReply(e, kPatientsPath, to);
     } catch (const std::exception& e) {
-      done(jsonError(http::status::internal_server_error, "import_failed", e.what(), kPatientsPath, to));
+      reply = importFailureReply(e, kPatientsPath, to);
     }
+    request.body.reset();  // the body file and the slot go before the client hears
+    done(std::move(reply));
   });
 }
 

@@ -11,6 +11,7 @@
 
 #include "net/HttpMessages.hpp"
 #include "net/MultipartForm.hpp"
+#include "net/UploadBody.hpp"
 #include "session/PlanningService.hpp"
 
 namespace orthosim::net {
@@ -20,12 +21,19 @@ inline constexpr const char* kPatientsPath = "/api/patients";
 // Whether the request (its headers are enough) is an upload to kPatientsPath.
 bool isPatientUpload(const Request& request);
 
-// The upload a form describes. Throws server::PatientImportError naming the field at fault.
-server::PatientUpload patientUploadFromForm(const std::vector<FormPart>& parts);
+// The upload a form describes (its parts located in the request's body file). Throws
+// server::PatientImportError naming the field at fault.
+server::PatientUpload patientUploadFromForm(const UploadRequest& request, const std::vector<FormPartSpan>& parts);
+
+// Refuses (server::PatientImportError bad_field, field "cuts") a template the engine does not know,
+// naming it and the known ones.
+void checkCutTemplates(const std::vector<std::string>& cuts);
 
 // Parses the form, imports on the service's import pool and calls `done` there with the reply:
 // 201 {"case": {...as in /api/cases}, "scale", "frame", "warnings", "built", "scan", "suggested"}, or
-// 400 / 409 / 415 with {"error", "message", "path", "field", "series" (several_series)}.
-void importPatient(server::PlanningService& service, Request request, std::function<void(StringResponse)> done);
+// 400 / 409 / 415 with {"error", "message", "path", "field", "series" (several_series)}; 500 with
+// field "" when the server fails.
+// The request's body file is removed when the import ends, however it ends.
+void importPatient(server::PlanningService& service, UploadRequest request, std::function<void(StringResponse)> done);
 
 }  // namespace orthosim::net

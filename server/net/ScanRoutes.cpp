@@ -1,13 +1,18 @@
 #include "net/ScanRoutes.hpp"
 
 #include <boost/asio/post.hpp>
+#include <iostream>
 
 #include "cases/CaseCatalog.hpp"
 #include "image/RgbImage.hpp"
+#include "net/FormBodyFile.hpp"
 #include "net/JsonResponses.hpp"
 #include "net/MultipartForm.hpp"
+#include "net/PatientUploadRoute.hpp"
 #include "net/RequestTarget.hpp"
 #include "render/PngFile.hpp"
+#include "session/ClientText.hpp"
+#include "session/Utf8Text.hpp"
 
 namespace orthosim::net {
 namespace {
@@ -118,6 +123,7 @@ server::PatientUpload uploadFromJson(const nlohmann::json& body) {
                                    "bone_threshold, mandible_seed, skull_seed)");
     }
   }
+  checkCutTemplates(upload.cuts);
   return upload;
 }
 
@@ -167,8 +173,9 @@ nlohmann::json seriesJson(const std::vector<DicomSeriesInfo>& series) {
 }
 
 StringResponse importErrorReply(const server::PatientImportError& e, const std::string& path, const ReplyTo& to) {
-  nlohmann::json body = {{"error", e.code}, {"message", e.what()}, {"path", path}};
-  if (!e.field.empty()) body["field"] = e.field;
+  nlohmann::json body = {{"error", e.code}, {"message", server::withoutServerPaths(e.what())}, {"path", path}};
+  body["field"] = server::quotableUtf8(e.field);
+  body["message"] = server::quotableUtf8(body["message"].get<std::string>());
   if (!e.series.empty()) body["series"] = seriesJson(e.series);
   const http::status status = e.code == "case_exists"      ? http::status::conflict
                               : e.code == "unknown_scan"   ? http::status::not_found
@@ -177,9 +184,48 @@ StringResponse importErrorReply(const server::PatientImportError& e, const std::
   return jsonResponse(status, body, to);
 }
 
-std::vector<FormPart> formParts(const Request& request) {
-  const auto type = request[http::field::content_type];
-  return parseMultipartForm(request.body(), formBoundary(std::string_view(type.data(), type.size())));
+StringResponse importFailureReply(const std::exception& e, const std::string& path, const ReplyTo& to) {
+  std::cerr << "orthosim serve: " << path << ": the import failed: " << e.what() << "\n";
+  return jsonResponse(http::status::internal_server_error,
+                      {{"error", "import_failed"},
+                       {"message", "the import failed on the server (its log says why); try again, or report it"},
+                       {"path", path},
+                       {"field", ""}},
+                      to);
+}
+
+std::vector<FormPartSpan> formParts(const UploadRequest& request) {
+  using server::PatientImportError;
+  std::vector<FormPartSpan> parts;
+  try {
+    const auto type = request.head[http::field::content_type];
+    const std::string boundary = formBoundary(std::string_view(type.data(), type.size()));
+    FormBodyFile body(request.body->path());
+    parts = locateFormParts(body, boundary);
+  } catch (const FormError& e) {
+    throw PatientImportError("bad_form", "body", server::quotableUtf8(e.what()));
+  }
+  for (const FormPartSpan& p : parts) {
+    if (!server::isUtf8(p.name))
+      throw PatientImportError("bad_field", server::quotableUtf8(p.name),
+                               server::quotableUtf8(p.name) + ": a field name not valid UTF-8");
+    if (!server::isUtf8(p.fileName))
+      throw PatientImportError("bad_file", p.name, p.name + ": the file name is not valid UTF-8");
+  }
+  return parts;
+}
+
+std::string formText(const UploadRequest& request, const FormPartSpan& part) {
+  constexpr std::uint64_t kMaxFieldBytes = 64 * 1024;
+  if (part.size > kMaxFieldBytes)
+    throw server::PatientImportError("bad_field", part.name, part.name + ": longer than 64 KiB");
+  std::string text = server::readSlice(formFile(request, part));
+  if (!server::isUtf8(text)) throw server::PatientImportError("bad_field", part.name, part.name + ": not valid UTF-8");
+  return text;
+}
+
+server::FileSlice formFile(const UploadRequest& request, const FormPartSpan& part) {
+  return {request.body->path(), part.offset, part.size};
 }
 
 nlohmann::json importedJson(const server::ImportedPatient& imported) {
@@ -203,33 +249,34 @@ bool isScanRoute(const Request& request) {
   return path && path->rfind(std::string(kScansPath) + "/", 0) == 0;
 }
 
-void stageScan(server::PlanningService& service, Request request, std::function<void(StringResponse)> done) {
-  boost::asio::post(service.importPool(), [&service, request = std::move(request), done = std::move(done)] {
-    const ReplyTo to = replyTo(request);
+void stageScan(server::PlanningService& service, UploadRequest request, std::function<void(StringResponse)> done) {
+  boost::asio::post(service.importPool(), [&service, request = std::move(request), done = std::move(done)]() mutable {
+    const ReplyTo to = replyTo(request.head);
+    StringResponse reply;
     try {
-      const std::vector<FormPart> parts = formParts(request);
+      const std::vector<FormPartSpan> parts = formParts(request);
       std::vector<server::UploadedFile> files;
-      for (const FormPart& p : parts) {
-        if (p.fileName.empty() && p.data.empty()) continue;  // an empty file input
+      for (const FormPartSpan& p : parts) {
+        if (p.fileName.empty() && p.size == 0) continue;  // an empty file input
         if (p.name != "dicom" && p.name != "dicom_zip")
           throw server::PatientImportError("bad_field", p.name,
                                            p.name + ": no such field (dicom: the scan's files, or dicom_zip)");
-        files.push_back({p.name, p.fileName, p.data});
+        files.push_back({p.name, p.fileName, formFile(request, p)});
       }
       const server::StagedScan staged = service.scans().stage(files);
-      done(jsonResponse(http::status::created,
-                        {{"token", staged.token},
-                         {"series", seriesJson(staged.series)},
-                         {"read", staged.read},
-                         {"expires_after_s", service.scans().expiry().count()}},
-                        to));
-    } catch (const FormError& e) {
-      done(jsonError(http::status::bad_request, "bad_form", e.what(), kScansPath, to));
+      reply = jsonResponse(http::status::created,
+                           {{"token", staged.token},
+                            {"series", seriesJson(staged.series)},
+                            {"read", staged.read},
+                            {"expires_after_s", service.scans().expiry().count()}},
+                           to);
     } catch (const server::PatientImportError& e) {
-      done(importErrorReply(e, kScansPath, to));
+      reply = importErrorReply(e, kScansPath, to);
     } catch (const std::exception& e) {
-      done(jsonError(http::status::internal_server_error, "import_failed", e.what(), kScansPath, to));
+      reply = importFailureReply(e, kScansPath, to);
     }
+    request.body.reset();  // the body file and the slot go before the client hears
+    done(std::move(reply));
   });
 }
 
@@ -282,7 +329,7 @@ void scanRoute(server::PlanningService& service, Request request, std::function<
     } catch (const server::PatientImportError& e) {
       done(importErrorReply(e, path, to));
     } catch (const std::exception& e) {
-      done(jsonError(http::status::internal_server_error, "import_failed", e.what(), path, to));
+      done(importFailureReply(e, path, to));
     }
   });
 }

@@ -15,6 +15,7 @@
 
 #include "net/HttpMessages.hpp"
 #include "net/MultipartForm.hpp"
+#include "net/UploadBody.hpp"
 #include "session/PlanningService.hpp"
 #include "volume/DicomSeries.hpp"
 
@@ -28,17 +29,28 @@ bool isScanUpload(const Request& request);
 bool isScanRoute(const Request& request);
 
 // Stages the upload's scan (ScanStore::stage) and calls `done` on the import pool.
-void stageScan(server::PlanningService& service, Request request, std::function<void(StringResponse)> done);
+void stageScan(server::PlanningService& service, UploadRequest request, std::function<void(StringResponse)> done);
 // Answers a request to /api/scans/<token>/... on the import pool.
 void scanRoute(server::PlanningService& service, Request request, std::function<void(StringResponse)> done);
 
 // [{uid, description, modality, files, rows, columns}] for the page's choice of a series.
 nlohmann::json seriesJson(const std::vector<DicomSeriesInfo>& series);
-// The reply to a refused upload or scan: {error, message, path, field?, series?}, its status by the
-// code (404 unknown_scan, 409 case_exists, 503 too_many_scans, else 400).
+// The reply to a refused upload or scan: {error, message, path, field, series?}, its status by the
+// code (404 unknown_scan, 409 case_exists, 503 too_many_scans, else 400). `field` is the form field
+// at fault, "body" for the form as a whole, "" when no field is at fault.
 StringResponse importErrorReply(const server::PatientImportError& e, const std::string& path, const ReplyTo& to);
-// The parts of a multipart/form-data request (the upload of a patient or a scan). Throws FormError.
-std::vector<FormPart> formParts(const Request& request);
+// The reply to an upload whose import failed on the server (not the client's fault): 500
+// import_failed, the reason logged rather than sent (it may name the server's folders or a
+// library's internals).
+StringResponse importFailureReply(const std::exception& e, const std::string& path, const ReplyTo& to);
+// The parts of a multipart/form-data upload (a patient's or a scan's), located in its body file.
+// Throws PatientImportError: bad_form (field "body") for a malformed form, bad_field for a field
+// name that is not UTF-8, bad_file for such a file name.
+std::vector<FormPartSpan> formParts(const UploadRequest& request);
+// A plain field's text: at most 64 KiB of UTF-8, else PatientImportError bad_field naming it.
+std::string formText(const UploadRequest& request, const FormPartSpan& part);
+// A file part's bytes, in the body file.
+server::FileSlice formFile(const UploadRequest& request, const FormPartSpan& part);
 // The body of a created case: {case, scale, frame, warnings, built, scan, suggested}.
 nlohmann::json importedJson(const server::ImportedPatient& imported);
 

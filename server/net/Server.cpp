@@ -63,6 +63,7 @@ Server::Server(const ServerOptions& options) : impl_(std::make_unique<Impl>(opti
                                      AccessPolicy(options.access, bound, machineNames(endpoint.address())));
   context->planning = &impl_->planning;
   context->limits = options.limits;
+  context->uploads = std::make_shared<UploadSlots>(options.limits.maxUploads);
   context->webSocket = options.webSocket;
   impl_->listener = std::make_shared<Listener>(impl_->io, endpoint, std::move(context));
   impl_->listener->start();

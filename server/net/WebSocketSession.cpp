@@ -8,12 +8,16 @@ namespace beast = boost::beast;
 namespace websocket = beast::websocket;
 
 WebSocketSession::WebSocketSession(boost::asio::ip::tcp::socket&& socket, server::PlanningService& service,
-                                   const WebSocketLimits& limits)
-    : ws_(std::move(socket)), service_(service), limits_(limits), unopened_(ws_.get_executor()) {}
+                                   const WebSocketLimits& limits, std::unique_ptr<server::SessionSlots::Slot> slot)
+    : ws_(std::move(socket)),
+      service_(service),
+      limits_(limits),
+      unopened_(ws_.get_executor()),
+      slot_(std::move(slot)) {}
 
 WebSocketSession::~WebSocketSession() {
+  slot_.reset();  // before planning_ goes: the slots may ask it whether it has a case until then
   if (planning_) planning_->close();
-  service_.leave();
 }
 
 void WebSocketSession::run(Request request) {
@@ -40,6 +44,12 @@ void WebSocketSession::onAccept(beast::error_code ec) {
       boost::asio::post(self->ws_.get_executor(), [self, bytes, binary] { self->queue(bytes, binary); });
   });
   planning_->start();
+  // A new connection finding every slot taken may take this one's while it has no case.
+  slot_->whenNeeded([planning = planning_.get()] { return planning->hasCase(); },
+                    [weak] {
+                      if (auto self = weak.lock())
+                        boost::asio::post(self->ws_.get_executor(), [self] { self->giveUpSlot(); });
+                    });
   unopened_.expires_after(limits_.unopenedTimeout);
   unopened_.async_wait([weak](const beast::error_code& waited) {
     if (auto self = weak.lock(); self && !waited) self->closeIfNoCase();
@@ -53,6 +63,17 @@ void WebSocketSession::closeIfNoCase() {
   planning_->close();
   const std::string why = "no case opened within " + std::to_string(limits_.unopenedTimeout.count()) + " s";
   ws_.async_close(websocket::close_reason(websocket::close_code::policy_error, why),
+                  [self = shared_from_this()](const beast::error_code&) {});
+}
+
+void WebSocketSession::giveUpSlot() {
+  if (closing_) return;
+  if (planning_->hasCase()) return slot_->rejoin();  // its open came in as the slot was taken
+  closing_ = true;
+  unopened_.cancel();
+  planning_->close();
+  ws_.async_close(websocket::close_reason(websocket::close_code::try_again_later,
+                                          "no case open, and the server needed the slot for a new connection"),
                   [self = shared_from_this()](const beast::error_code&) {});
 }
 
@@ -76,6 +97,7 @@ void WebSocketSession::onRead(beast::error_code ec, std::size_t bytes) {
   }
   buffer_.consume(buffer_.size());
   if (ws_.is_message_done()) {
+    slot_->heard();
     try {
       if (discarding_)
         planning_->refuseOversized(messageBytes_, limits_.messageBytes);

@@ -29,9 +29,10 @@ struct WebSocketLimits {
 
 class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
  public:
-  // The caller has taken a session slot (PlanningService::tryEnter); this gives it back.
+  // `slot`: the session slot the caller took (PlanningService::slots()); given back with the
+  // connection, or given up while it has no case and another connection needs it.
   WebSocketSession(boost::asio::ip::tcp::socket&& socket, server::PlanningService& service,
-                   const WebSocketLimits& limits);
+                   const WebSocketLimits& limits, std::unique_ptr<server::SessionSlots::Slot> slot);
   ~WebSocketSession();
 
   // Completes the upgrade `request` asked for, then serves the connection.
@@ -40,6 +41,8 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
  private:
   void onAccept(boost::beast::error_code ec);
   void closeIfNoCase();
+  // On the strand: the slot went to a new connection; closed unless a case was opened meanwhile.
+  void giveUpSlot();
   void read();
   void onRead(boost::beast::error_code ec, std::size_t bytes);
   // On the strand. A new frame replaces frames still waiting (not the one being written).
@@ -64,6 +67,8 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   bool closing_ = false;
   std::shared_ptr<server::PlanningSession> planning_;
   boost::asio::steady_timer unopened_;
+  // Last: given back first when the connection ends, so its hasCase never outlives planning_.
+  std::unique_ptr<server::SessionSlots::Slot> slot_;
 };
 
 }  // namespace orthosim::net

@@ -11,27 +11,31 @@ namespace orthosim::server {
 using nlohmann::json;
 namespace {
 
+[[noreturn]] void refuse(const std::string& where, const std::string& what) {
+  throw ProtocolError("bad_value", where + ": " + what, where);
+}
+
 Landmarks readLandmarks(const MessageReader& r, const json& j) {
-  if (!j.is_object()) r.fail("bad_value", "/landmarks: must be an object {name: [x, y, z]}", "/landmarks");
+  if (!j.is_object()) r.fail("bad_value", "must be an object {name: [x, y, z]}", "landmarks");
   Landmarks out;
   for (const auto& [name, value] : j.items()) {
-    const std::string where = "/landmarks/" + name;
-    if (!isLandmarkName(name)) r.fail("bad_value", where + ": a landmark name is 1-64 letters, digits, _ or -", where);
+    const std::string where = jsonPointer(r.pointer("landmarks"), name);
+    if (!isLandmarkName(name)) refuse(where, "a landmark name is 1-64 letters, digits, _ or -");
     if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
         !value[2].is_number())
-      r.fail("bad_value", where + ": must be [x, y, z] in mm", where);
+      refuse(where, "must be [x, y, z] in mm");
     const Eigen::Vector3d p(value[0].get<double>(), value[1].get<double>(), value[2].get<double>());
-    if (!p.allFinite()) r.fail("bad_value", where + ": must be finite", where);
+    if (!p.allFinite()) refuse(where, "must be finite");
     out[name] = p;
   }
   return out;
 }
 
 std::vector<CutChoice> readCuts(const MessageReader& r, const json& j) {
-  if (!j.is_array()) r.fail("bad_value", "/cuts: must be an array of {kind, offset_mm?, tilt_deg?, side?}", "/cuts");
+  if (!j.is_array()) r.fail("bad_value", "must be an array of {kind, offset_mm?, tilt_deg?, side?}", "cuts");
   std::vector<CutChoice> out;
   for (std::size_t i = 0; i < j.size(); ++i) {
-    MessageReader c(j[i], "/cuts/" + std::to_string(i));
+    MessageReader c(j[i], jsonPointer(r.pointer("cuts"), std::to_string(i)));
     CutChoice cut;
     cut.kind = c.string("kind");
     if (c.has("offset_mm")) cut.offsetMm = c.number("offset_mm", 0, 0, 50, "mm");

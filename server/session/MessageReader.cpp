@@ -5,12 +5,32 @@
 
 namespace orthosim::server {
 
+std::string jsonPointer(const std::string& parent, const std::string& key) {
+  std::string out = parent + "/";
+  for (const char c : key) {
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
+  }
+  return out;
+}
+
+namespace {
+
+// A number as the client wrote it: 2^64-1 stays 18446744073709551615 (not -1), 0.1 stays 0.1.
+std::string asSent(const nlohmann::json& v) { return v.dump(); }
+
+}  // namespace
+
 MessageReader::MessageReader(const nlohmann::json& j, std::string pointer) : j_(j), pointer_(std::move(pointer)) {
   if (!j_.is_object()) fail("bad_value", "must be a JSON object");
 }
 
 void MessageReader::fail(const std::string& code, const std::string& what, const std::string& field) const {
-  const std::string where = field.empty() ? pointer_ : pointer_ + "/" + field;
+  const std::string where = field.empty() ? pointer_ : jsonPointer(pointer_, field);
   throw ProtocolError(code, (where.empty() ? std::string("message") : where) + ": " + what, where);
 }
 
@@ -43,7 +63,7 @@ double MessageReader::number(const std::string& k, double dflt, double lo, doubl
   if (!std::isfinite(x)) fail("bad_value", "must be finite", k);
   if (x < lo || x > hi) {
     std::ostringstream s;
-    s << x << " " << unit << " is outside the allowed range [" << lo << ", " << hi << "] " << unit;
+    s << asSent(v) << " " << unit << " is outside the allowed range [" << lo << ", " << hi << "] " << unit;
     fail("out_of_range", s.str(), k);
   }
   return x;
@@ -53,9 +73,11 @@ std::optional<long long> MessageReader::optionalInteger(const std::string& k, lo
   if (!has(k)) return std::nullopt;
   const nlohmann::json& v = j_.at(k);
   if (!v.is_number_integer()) fail("bad_value", "must be an integer", k);
-  const long long x = v.get<long long>();
-  if (x < lo || x > hi)
-    fail("out_of_range", std::to_string(x) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", k);
+  // An unsigned value beyond long long is out of range too, not wrapped to a negative number.
+  const bool beyond = v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(hi);
+  const long long x = beyond ? hi : v.get<long long>();
+  if (beyond || x < lo || x > hi)
+    fail("out_of_range", asSent(v) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", k);
   return x;
 }
 

@@ -11,11 +11,15 @@
 
 namespace orthosim::server {
 
+// `parent` + "/" + `key` as a JSON pointer (RFC 6901): "~" and "/" in the key escaped as "~0", "~1".
+std::string jsonPointer(const std::string& parent, const std::string& key);
+
 class MessageReader {
  public:
   // Throws bad_value when `j` is not an object.
   MessageReader(const nlohmann::json& j, std::string pointer);
 
+  // Throws ProtocolError at this object or at its field `field` (a key, not a pointer).
   [[noreturn]] void fail(const std::string& code, const std::string& what, const std::string& field = "") const;
   bool has(const std::string& k);
   std::string string(const std::string& k);
@@ -26,7 +30,7 @@ class MessageReader {
   bool boolean(const std::string& k, bool dflt);
   MessageReader object(const std::string& k);
   const nlohmann::json& raw() const { return j_; }
-  std::string pointer(const std::string& k) const { return pointer_ + "/" + k; }
+  std::string pointer(const std::string& k) const { return jsonPointer(pointer_, k); }
   // Throws unknown_field naming the first field never asked about.
   void rejectUnknown() const;
 

@@ -1,51 +1,33 @@
 #include "session/PlanStore.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "cases/Identifier.hpp"
-#include "mesh/TemporaryName.hpp"
+#include "mesh/AtomicFile.hpp"
 #include "session/ProtocolError.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;
 namespace {
 
-void writeAll(int fd, const std::string& text, const fs::path& path) {
-  size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw std::runtime_error(path.string() + ": write failed: " + std::strerror(errno));
-    done += static_cast<size_t>(n);
-  }
-}
-
 // Writes `text` to `target` atomically and durably: temporary file, fsync, rename, fsync folder.
+// A failure (a full disk) leaves the old plan and no temporary file; the client hears the reason
+// without the server's paths, which go to the log.
 void replaceFile(const fs::path& target, const std::string& text) {
-  const fs::path tmp = target.string() + ".tmp" + temporarySuffix();  // unique across replicas' hosts
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error(tmp.string() + ": cannot create: " + std::strerror(errno));
   try {
-    writeAll(fd, text, tmp);
-    if (::fsync(fd) != 0) throw std::runtime_error(tmp.string() + ": fsync failed: " + std::strerror(errno));
-  } catch (...) {
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    throw;
-  }
-  ::close(fd);
-  fs::rename(tmp, target);
-  const int dir = ::open(target.parent_path().c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir >= 0) {
-    ::fsync(dir);  // the rename itself survives a power cut
-    ::close(dir);
+    writeFileAtomically(target, text, Durability::Synced);
+  } catch (const AtomicFileError& e) {
+    std::cerr << "orthosim serve: saving a plan: " << e.what() << "\n";
+    throw ProtocolError("save_failed", "the plan could not be written on the server: " + e.reason(), "/name");
   }
 }
 
@@ -68,9 +50,16 @@ fs::path PlanStore::file(const std::string& caseId, const std::string& name) con
   return root_ / caseId / (name + ".json");
 }
 
-void PlanStore::save(const std::string& caseId, const std::string& name, const nlohmann::json& plan) {
+void PlanStore::save(const std::string& caseId, const std::string& name, const nlohmann::json& plan, bool replace) {
   const fs::path target = file(caseId, name);
   const std::lock_guard<std::mutex> lock(mutex_);
+  // Checked under the lock, so of two sessions saving one new name at once the second is refused.
+  std::error_code ec;
+  if (!replace && fs::exists(target, ec))
+    throw ProtocolError("plan_exists",
+                        "a plan '" + name + "' is saved already, " + describeStamp(stampOf(target)) +
+                            "; save it with \"replace\": true to replace it, or choose another name",
+                        "/name");
   fs::create_directories(target.parent_path());
   replaceFile(target, plan.dump(2) + "\n");
 }
@@ -84,6 +73,21 @@ nlohmann::json PlanStore::load(const std::string& caseId, const std::string& nam
   } catch (const nlohmann::json::exception& e) {
     throw ProtocolError("bad_plan", "saved plan '" + name + "' is not valid JSON: " + e.what(), "/name");
   }
+}
+
+PlanStamp PlanStore::stampOf(const fs::path& path) const {
+  struct stat info {};
+  const std::string fileTime = ::stat(path.c_str(), &info) == 0 ? utcTimestamp(info.st_mtime) : "";
+  std::ifstream in(path, std::ios::binary);
+  const nlohmann::json plan = nlohmann::json::parse(in, nullptr, false);  // unreadable: no stamp
+  if (plan.is_discarded()) return {};
+  return planStampOf(plan, fileTime);
+}
+
+std::vector<PlanEntry> PlanStore::entries(const std::string& caseId) const {
+  std::vector<PlanEntry> out;
+  for (const std::string& name : list(caseId)) out.push_back({name, stampOf(file(caseId, name))});
+  return out;
 }
 
 std::vector<std::string> PlanStore::list(const std::string& caseId) const {

@@ -18,15 +18,15 @@ PlanningService::PlanningService(PlanningOptions options)
       plans_(options_.dataDir / "plans"),
       patients_(options_.dataDir, cases_),
       scans_(options_.dataDir, patients_, options_.scanExpiry, options_.maxStagedScans),
+      slots_(options_.maxSessions, options_.idleSlotGrace),
       previewPool_(static_cast<std::size_t>(std::max(1, options_.previewThreads))) {
-  // Leftovers are removed only by a process that has the folder to itself: another replica or a
-  // worker may be writing what looks like one.
-  if (lock_.alone())
-    for (const std::string& leftover : removeLeftovers(options_.dataDir))
-      std::cerr << "orthosim serve: removed " << leftover << ", left by an interrupted write\n";
-  else
+  // Those of writers on other hosts only when alone: a replica or a worker there may be writing them.
+  for (const std::string& leftover : removeLeftovers(options_.dataDir, lock_.alone()))
+    std::cerr << "orthosim serve: removed " << leftover << ", left by an interrupted write\n";
+  if (!lock_.alone())
     std::cerr << "orthosim serve: the data folder is shared with running replicas or workers; leftovers of "
-                 "interrupted writes are left to the next process that starts alone\n";
+                 "interrupted writes are left to the next process that starts alone, but for those of ended "
+                 "processes on this host\n";
   lock_.share();
   // Patients imported from the page before: after the leftovers went, so none is half-written.
   std::vector<std::string> skipped;
@@ -58,19 +58,10 @@ PlanningService::PlanningService(PlanningOptions options)
 
 PlanningService::~PlanningService() { shutdown(); }
 
-bool PlanningService::tryEnter() {
-  int n = sessions_.load();
-  while (n < options_.maxSessions)
-    if (sessions_.compare_exchange_weak(n, n + 1)) return true;
-  return false;
-}
-
-void PlanningService::leave() { --sessions_; }
-
 nlohmann::json PlanningService::health(const std::string& version) const {
   return {{"status", "ok"},
           {"version", version},
-          {"sessions", sessions_.load()},
+          {"sessions", slots_.taken()},
           {"jobs",
            {{"running", localJobs_.running() + (redisJobs_ ? fineJobs_->running() : 0)},
             {"queued", localJobs_.queued() + (redisJobs_ ? fineJobs_->queued() : 0)}}}};

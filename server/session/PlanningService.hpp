@@ -20,6 +20,7 @@
 #include "session/ExportStore.hpp"
 #include "session/JobQueue.hpp"
 #include "session/PlanStore.hpp"
+#include "session/SessionSlots.hpp"
 
 namespace orthosim::server {
 
@@ -37,6 +38,9 @@ struct PlanningOptions {
   std::string replica;
   std::chrono::milliseconds orphanGrace{120000};
   int maxSessions = 32;
+  // How long a connection without a case keeps its slot when a new connection needs it: from its
+  // start, and from its client's last message (session/SessionSlots).
+  std::chrono::milliseconds idleSlotGrace{5000};
   PoseLimits limits;
   // What one preview may spend (both tries together: from the last preview, then from rest): an
   // interactive answer, not a confirm. A pose that needs more is refused with the reason, the
@@ -76,10 +80,9 @@ class PlanningService {
   const PoseLimits& limits() const { return options_.limits; }
   const PlanningOptions& options() const { return options_; }
 
-  // A session slot, or false when maxSessions are open; release with leave().
-  bool tryEnter();
-  void leave();
-  int sessions() const { return sessions_.load(); }
+  // Session slots: maxSessions, idle connections without a case giving theirs up when needed.
+  SessionSlots& slots() { return slots_; }
+  int sessions() const { return slots_.taken(); }
 
   // {"status": "ok", "version", "sessions", "jobs": {"running", "queued"}} for GET /api/health.
   nlohmann::json health(const std::string& version) const;
@@ -99,7 +102,7 @@ class PlanningService {
   ExportStore exports_;
   PatientImporter patients_;
   ScanStore scans_;
-  std::atomic<int> sessions_{0};
+  SessionSlots slots_;
   // Last, so destroyed first: work they still hold may end a session, which uses the members above.
   boost::asio::thread_pool previewPool_;
   boost::asio::thread_pool renderPool_{1};

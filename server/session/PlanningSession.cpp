@@ -14,12 +14,15 @@
 #include "scene/LandmarkFrame.hpp"
 #include "scene/Osteotomy.hpp"
 #include "scene/PlanningFragments.hpp"
+#include "session/ClientText.hpp"
 #include "session/DragResponse.hpp"
 #include "session/FineJob.hpp"
 #include "session/OpenCase.hpp"
+#include "session/PlanStamp.hpp"
 #include "session/SavedPlan.hpp"
 #include "session/SkinExport.hpp"
 #include "session/SolveFiguresJson.hpp"
+#include "session/UserName.hpp"
 #include "solver/Model.hpp"
 #include "solver/NewtonSolver.hpp"
 #include "solver/PinchedTissue.hpp"
@@ -89,7 +92,11 @@ void PlanningSession::reply(json message, const json& id) {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (closed_) return;
   }
-  send_(message.dump(), false);
+  // Failures carry an engine's or a library's words: the client gets them without the server's
+  // folders, and as valid UTF-8 whatever bytes they quote (a strict dump would throw).
+  auto text = message.find("message");
+  if (text != message.end() && text->is_string()) *text = withoutServerPaths(text->get<std::string>());
+  send_(message.dump(-1, ' ', false, json::error_handler_t::replace), false);
 }
 
 void PlanningSession::sendError(const std::string& code, const std::string& message, const std::string& path,
@@ -113,7 +120,7 @@ void PlanningSession::handle(const std::string& text) {
   try {
     message = json::parse(text);
   } catch (const json::exception& e) {  // syntax errors, and numbers beyond double (1e999)
-    return sendError("malformed_json", std::string("message is not valid JSON: ") + e.what(), "", nullptr);
+    return sendError("malformed_json", "message is not valid JSON: " + jsonSyntaxMessage(e), "", nullptr);
   }
   try {
     if (message.is_object() && message.contains("id")) {
@@ -623,12 +630,20 @@ void PlanningSession::cancel(MessageReader& r, const json& id) {
 void PlanningSession::listPlans(MessageReader& r, const json& id) {
   const std::shared_ptr<OpenCase> c = requireOpen();
   r.rejectUnknown();
-  reply({{"type", "plans"}, {"case", c->id}, {"plans", service_.plans().list(c->id)}}, id);
+  // `plans` stays the list of names older pages read; `details` says who saved each and when.
+  json names = json::array(), details = json::array();
+  for (const PlanEntry& e : service_.plans().entries(c->id)) {
+    names.push_back(e.name);
+    details.push_back({{"name", e.name}, {"saved_by", e.stamp.savedBy}, {"saved_at", e.stamp.savedAt}});
+  }
+  reply({{"type", "plans"}, {"case", c->id}, {"plans", std::move(names)}, {"details", std::move(details)}}, id);
 }
 
 void PlanningSession::savePlan(MessageReader& r, const json& id) {
   const std::shared_ptr<OpenCase> c = requireOpen();
   const std::string name = r.string("name");
+  const std::string savedBy = checkedUserName(r.optionalString("saved_by").value_or(""), r.pointer("saved_by"));
+  const bool replace = r.boolean("replace", false);
   r.rejectUnknown();
   json poses;
   Poses current;
@@ -637,9 +652,12 @@ void PlanningSession::savePlan(MessageReader& r, const json& id) {
     poses = posesJson();
     current = poses_;
   }
-  service_.plans().save(c->id, name,
-                        savedPlanJson(c->id, name, poses, c->plan(current), osteotomySetJson(c->coarse->spec.cuts)));
-  reply({{"type", "saved"}, {"case", c->id}, {"name", name}}, id);
+  const PlanStamp stamp = planStampNow(savedBy);
+  service_.plans().save(
+      c->id, name, savedPlanJson(c->id, name, poses, c->plan(current), osteotomySetJson(c->coarse->spec.cuts), stamp),
+      replace);
+  reply({{"type", "saved"}, {"case", c->id}, {"name", name}, {"saved_by", stamp.savedBy}, {"saved_at", stamp.savedAt}},
+        id);
 }
 
 void PlanningSession::loadPlan(MessageReader& r, const json& id) {
@@ -732,7 +750,8 @@ void PlanningSession::view(MessageReader& r, const json&) {
 // frame drawn, in order with the frames around it.
 void PlanningSession::pick(MessageReader& r, const json& id) {
   requireOpen();
-  if (!r.has("x") || !r.has("y")) r.fail("missing_field", "/x, /y: the pixel to pick is needed", "/x");
+  if (!r.has("x")) r.fail("missing_field", "the pixel to pick is needed (x and y)", "x");
+  if (!r.has("y")) r.fail("missing_field", "the pixel to pick is needed (x and y)", "y");
   const double x = r.number("x", 0, 0, 8192, "pixels"), y = r.number("y", 0, 0, 8192, "pixels");
   r.rejectUnknown();
   std::shared_ptr<SessionView> v;

@@ -43,14 +43,21 @@ json osteotomySetJson(const std::vector<OsteotomySpec>& cuts) {
 }
 
 json savedPlanJson(const std::string& caseId, const std::string& name, const json& poses,
-                   const std::map<std::string, FragmentMotion>& plan, const json& cuts) {
+                   const std::map<std::string, FragmentMotion>& plan, const json& cuts, const PlanStamp& stamp) {
   json world = json::object();
   for (const auto& [fragment, motion] : plan) {
     const Eigen::Vector3d deg = motion.rotation * 180.0 / kPi;
     world[fragment] = {
         {"translation_mm", vec(motion.translation)}, {"rotation_deg", vec(deg)}, {"center_mm", vec(motion.center)}};
   }
-  return {{"format", kPlanFormat}, {"case", caseId}, {"name", name}, {"poses", poses}, {"plan", world}, {"cuts", cuts}};
+  return {{"format", kPlanFormat},
+          {"case", caseId},
+          {"name", name},
+          {"poses", poses},
+          {"plan", world},
+          {"cuts", cuts},
+          {"saved_by", stamp.savedBy},
+          {"saved_at", stamp.savedAt}};
 }
 
 std::map<std::string, AnatomicalPose> readSavedPlan(const json& plan, const std::string& name,
@@ -68,6 +75,8 @@ std::map<std::string, AnatomicalPose> readSavedPlan(const json& plan, const std:
     p.string("name");
     p.has("plan");
     p.has("cuts");
+    p.optionalString("saved_by");  // who saved it and when: absent in plans saved before they said
+    p.optionalString("saved_at");
     std::map<std::string, AnatomicalPose> poses = readPoses(p.object("poses"));
     p.rejectUnknown();
     return poses;

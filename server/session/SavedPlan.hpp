@@ -12,6 +12,7 @@
 #include "scene/RigidPose.hpp"
 #include "session/AnatomicalPose.hpp"
 #include "session/MessageReader.hpp"
+#include "session/PlanStamp.hpp"
 
 namespace orthosim::server {
 
@@ -20,9 +21,11 @@ namespace orthosim::server {
 nlohmann::json osteotomySetJson(const std::vector<OsteotomySpec>& cuts);
 
 // `poses`: {fragment: pose} as poseToJson writes it; `plan`: the same poses as world motions;
-// `cuts`: the osteotomy set they were made on (osteotomySetJson).
+// `cuts`: the osteotomy set they were made on (osteotomySetJson); `stamp`: who saved it and when
+// (written as saved_by and saved_at).
 nlohmann::json savedPlanJson(const std::string& caseId, const std::string& name, const nlohmann::json& poses,
-                             const std::map<std::string, FragmentMotion>& plan, const nlohmann::json& cuts);
+                             const std::map<std::string, FragmentMotion>& plan, const nlohmann::json& cuts,
+                             const PlanStamp& stamp = {});
 
 // Reads the poses of saved plan `name` with `readPoses` (which checks them against the open case).
 // Throws ProtocolError bad_plan, naming the plan, for an unknown format or a bad field, and

@@ -122,7 +122,8 @@ TEST(RedisReplicas, APatientImportedAndEditedThroughOneIsSeenFreshByTheOther) {
   auto a = replica(redis, "patients-a", data);
   auto b = replica(redis, "patients-b", data);
   ASSERT_FALSE(contains(caseIds(b->port()), "jane"));
-  const std::vector<test::HttpReply> created = test::httpRaw(a->port(), uploadRequest("jane", surfaces));
+  const std::vector<test::HttpReply> created =
+      test::httpRaw(a->port(), uploadRequest("jane", surfaces), std::chrono::seconds(300));
   ASSERT_EQ(created.size(), 1u);
   ASSERT_EQ(created[0].result_int(), 201) << created[0].body();
   EXPECT_TRUE(contains(caseIds(b->port()), "jane")) << "imported through A, listed by B";

@@ -84,6 +84,17 @@ RedisTestServer::RedisTestServer() {
   if (!::mkdtemp(tmpl)) throw std::runtime_error("cannot make a temporary folder");
   dir_ = tmpl;
   port_ = freePort();
+  start();
+}
+
+void RedisTestServer::restart() {
+  kill();
+  start();
+}
+
+void RedisTestServer::start() {
+  const std::optional<std::string> binary = redisServerBinary();
+  if (!binary) throw std::runtime_error("redis-server is not on PATH");
   pid_ = spawn({*binary, "--port", std::to_string(port_), "--bind", "127.0.0.1", "--save", "", "--appendonly", "no",
                 "--dir", dir_.string(), "--daemonize", "no", "--loglevel", "warning"},
                -1, (dir_ / "redis.log").string());

@@ -28,8 +28,12 @@ class RedisTestServer {
   int port() const { return port_; }
   std::string url() const { return "redis://127.0.0.1:" + std::to_string(port_); }
   void kill();  // SIGKILL: Redis gone at once, as in an outage
+  // After kill(): redis-server again on the same port, empty (no persistence), waiting as at start.
+  void restart();
 
  private:
+  void start();
+
   pid_t pid_ = -1;
   int port_ = 0;
   std::filesystem::path dir_;

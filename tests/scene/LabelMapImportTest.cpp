@@ -205,13 +205,58 @@ TEST_F(LabelMapImport, BadMapsAndMissingLabelsAreNamedAndLeaveNothing) {
   writeNifti(boxGrid(Eigen::Vector3d::Zero(), 1.0), in.labelMap);
   fs::resize_file(in.labelMap, fs::file_size(in.labelMap) - 1000);
   m = refusal(in, dir_ / "case");
-  EXPECT_NE(m.find("short.nii: cannot read the NIfTI image: NIFTI file is truncated"), std::string::npos) << m;
+  EXPECT_NE(m.find("short.nii: truncated: the voxels need"), std::string::npos) << m;
 
   // Fractional voxel values: an intensity image, not a label map.
   in.labelMap = (dir_ / "ct.nii").string();
   test::writeNiftiIntensities(in.labelMap);
   m = refusal(in, dir_ / "case");
   EXPECT_NE(m.find("ct.nii: not a label map"), std::string::npos) << m;
+}
+
+// A header declaring more voxels than the file can hold is refused before VTK allocates them: a
+// few bytes declaring a gigabyte of voxels, raw, gzip-compressed or as text, NRRD or NIfTI.
+TEST_F(LabelMapImport, VoxelsTheFileCannotHoldAreRefusedBeforeTheyAreRead) {
+  auto message = [](const std::string& path) {
+    try {
+      readLabelMap(path);
+    } catch (const LabelMapError& e) {
+      return std::string(e.what());
+    }
+    return std::string("read");
+  };
+  auto nrrd = [&](const std::string& name, const std::string& sizes, const std::string& encoding,
+                  const std::string& data) {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary)
+        << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: " << sizes << "\nencoding: " << encoding << "\n\n"
+        << data;
+    return path;
+  };
+  std::string m = message(nrrd("raw.nrrd", "1000 1000 1000", "raw", "0123"));
+  EXPECT_NE(m.find("raw.nrrd: truncated: the voxels need 1000000000 bytes, the file holds 4"), std::string::npos) << m;
+  m = message(nrrd("deflated.nrrd", "1000 1000 500", "gzip", std::string(100, 'z')));
+  EXPECT_NE(m.find("deflated.nrrd: the header declares 1000 x 1000 x 500 voxels (500000000 bytes), more than its 100 "
+                   "compressed bytes can hold"),
+            std::string::npos)
+      << m;
+  m = message(nrrd("text.nrrd", "100 100 100", "ascii", "1 2 3\n"));
+  EXPECT_NE(m.find("text.nrrd: the header declares 100 x 100 x 100 voxels"), std::string::npos) << m;
+  EXPECT_NE(m.find("more values than its 6 bytes of text can hold"), std::string::npos) << m;
+  m = message(nrrd("huge.nrrd", "2000 2000 2000", "gzip", std::string(100000, 'z')));
+  EXPECT_NE(m.find("more than 1024^3 voxels"), std::string::npos) << m;
+
+  // A real NIfTI whose header is made to declare 1000^3 voxels (dim[1..3], int16 at byte 42).
+  const std::string nifti = (dir_ / "big.nii").string();
+  writeNifti(boxGrid(Eigen::Vector3d::Zero(), 1.0), nifti);
+  {
+    std::fstream f(nifti, std::ios::in | std::ios::out | std::ios::binary);
+    const std::int16_t dims[3] = {1000, 1000, 1000};
+    f.seekp(42);
+    f.write(reinterpret_cast<const char*>(dims), sizeof dims);
+  }
+  m = message(nifti);
+  EXPECT_NE(m.find("big.nii: truncated: the voxels need 1000000000 bytes"), std::string::npos) << m;
 }
 
 // The acceptance: the phantom's own surfaces as a label map give a case whose Le Fort I

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <Eigen/Core>
 #include <array>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -74,7 +76,8 @@ class PatientUpload : public ::testing::Test {
     return args;
   }
   static test::HttpReply upload(unsigned short port, const std::vector<Part>& parts, const std::string& headers = "") {
-    const std::vector<test::HttpReply> replies = test::httpRaw(port, uploadRequest(parts, headers));
+    const std::vector<test::HttpReply> replies =
+        test::httpRaw(port, uploadRequest(parts, headers), std::chrono::seconds(300));
     if (replies.size() != 1) throw std::runtime_error("expected one reply, got " + std::to_string(replies.size()));
     return replies[0];
   }
@@ -222,6 +225,76 @@ TEST_F(PatientUpload, EachBadUploadGetsItsOwnErrorAndLeavesNothing) {
 
   EXPECT_EQ(caseIds(server.port()).size(), 6u);  // the built-in cases only
   EXPECT_EQ(test::httpGet(server.port(), "/api/health").result(), http::status::ok);
+}
+
+// A closed tetrahedron 4 mm across at `c`, as binary STL, facing outward.
+std::string tetrahedronStl(const Eigen::Vector3f& c) {
+  const std::array<Eigen::Vector3f, 4> v = {c + Eigen::Vector3f(2, 2, 2), c + Eigen::Vector3f(2, -2, -2),
+                                            c + Eigen::Vector3f(-2, 2, -2), c + Eigen::Vector3f(-2, -2, 2)};
+  const std::array<std::array<int, 3>, 4> faces = {{{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}}};
+  std::string stl(80, ' ');
+  const std::uint32_t n = 4;
+  stl.append(reinterpret_cast<const char*>(&n), 4);
+  for (const auto& f : faces) {
+    const Eigen::Vector3f normal = (v[f[1]] - v[f[0]]).cross(v[f[2]] - v[f[0]]).normalized();
+    stl.append(reinterpret_cast<const char*>(normal.data()), 12);
+    for (int k : f) stl.append(reinterpret_cast<const char*>(v[k].data()), 12);
+    stl.append(2, '\0');
+  }
+  return stl;
+}
+
+// The centre of a binary STL's bounding box.
+Eigen::Vector3f stlCentre(const std::string& stl) {
+  std::uint32_t n = 0;
+  std::memcpy(&n, stl.data() + 80, 4);
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant(1e9f), hi = -lo;
+  for (std::uint32_t t = 0; t < n; ++t)
+    for (int k = 0; k < 3; ++k) {
+      Eigen::Vector3f p;
+      std::memcpy(p.data(), stl.data() + 84 + 50 * t + 12 + 12 * k, 12);
+      lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    }
+  return 0.5f * (lo + hi);
+}
+
+// One rule for importing and opening: what the import accepts opens. A mandible that passes every
+// check of its own but lies inside the skull (no tissue to bond to it) and a texture that is no
+// image are refused at the import, naming what is wrong, and the id stays free for the good files.
+TEST_F(PatientUpload, AnAcceptedImportAlwaysOpensAndARefusedOneFreesItsId) {
+  test::ServerProcess server(serverArgs());
+  auto refusedWith = [&](std::vector<Part> parts, const std::string& field, const std::string& words) {
+    const test::HttpReply reply = upload(server.port(), parts);
+    EXPECT_EQ(reply.result(), http::status::bad_request) << reply.body();
+    const json error = json::parse(reply.body());
+    EXPECT_EQ(error["error"], "import_failed") << reply.body();
+    EXPECT_EQ(error.value("field", ""), field) << reply.body();
+    EXPECT_NE(error["message"].get<std::string>().find(words), std::string::npos) << reply.body();
+    EXPECT_EQ(error["message"].get<std::string>().find(data_.string()), std::string::npos) << reply.body();
+    EXPECT_TRUE(importsOnDisk().empty()) << reply.body();
+    const std::vector<std::string> ids = caseIds(server.port());
+    EXPECT_EQ(std::find(ids.begin(), ids.end(), "p3"), ids.end()) << "a refused import is not listed";
+  };
+  std::vector<Part> parts = phantomParts("p3");
+  parts[6].data = tetrahedronStl(stlCentre(parts[5].data));
+  refusedWith(parts, "", "would not open");
+
+  parts = phantomParts("p3");
+  parts[8].data = "this is not a picture";
+  refusedWith(parts, "texture", "skin.jpg: not a JPEG or PNG image");
+
+  const test::HttpReply good = upload(server.port(), phantomParts("p3"));
+  ASSERT_EQ(good.result(), http::status::created) << good.body();
+  test::WsTestClient ws(server.port());
+  ws.request({{"type", "open"}, {"case", "p3"}});
+  std::vector<std::string> phases;
+  const json opened = ws.waitFor(
+      [&](const json& m) {
+        if (m["type"] == "open_progress") phases.push_back(m["phase"]);
+        return m["type"] == "opened" || m["type"] == "error";
+      },
+      180s);
+  EXPECT_EQ(opened["type"], "opened") << opened.dump();
 }
 
 // Points 2 and 3 of issue 20 on an imported patient: a landmark moved and the Le Fort I shifted

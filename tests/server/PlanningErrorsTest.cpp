@@ -47,6 +47,28 @@ TEST_F(PlanningErrors, MalformedJson) {
   EXPECT_NE(e["message"].get<std::string>().find("not valid JSON"), std::string::npos);
 }
 
+// Bytes the parser stops inside (a multi-byte character, a line separator, an emoji in a literal)
+// still get a reply: the message quoting them is sent as valid UTF-8, without the library's tag.
+TEST_F(PlanningErrors, EveryMalformedTextGetsAReply) {
+  for (const std::string text :
+       {"{\"type\":\"list_cases\"\xC3\xA9}", "{\xE2\x80\xA8\"type\":\"list_cases\"}", "{\"x\":tru\xF0\x9F\xA6\xB7}"}) {
+    const json e = errorForText(text);
+    EXPECT_EQ(e["error"], "malformed_json") << text;
+    EXPECT_EQ(e["message"].get<std::string>().find("json.exception"), std::string::npos) << e.dump();
+  }
+}
+
+TEST_F(PlanningErrors, PathsArePointersAndNumbersAsSent) {
+  const json unknown = errorFor(json{{"type", "describe"}, {"/x", 1}});
+  EXPECT_EQ(unknown["path"], "/~1x");
+  const json pick = errorFor(json{{"type", "pick"}, {"y", 1}});
+  EXPECT_EQ(pick["path"], "/x");
+  EXPECT_EQ(pick["message"].get<std::string>().rfind("/x: ", 0), 0u) << pick.dump();
+  const json job = errorForText(R"({"type":"cancel","job":18446744073709551615})");
+  EXPECT_EQ(job["error"], "out_of_range");
+  EXPECT_NE(job["message"].get<std::string>().find("18446744073709551615"), std::string::npos) << job.dump();
+}
+
 TEST_F(PlanningErrors, NotAnObject) { EXPECT_EQ(errorForText("[1, 2]")["error"], "bad_value"); }
 
 TEST_F(PlanningErrors, MissingType) {

@@ -80,7 +80,7 @@ TEST(PlanningJobs, SigtermDuringAJobStopsCleanlyAndKeepsSavedPlans) {
   test::ServerProcess server({"--data", data.string(), "--no-warm-up"});
   test::WsTestClient ws(server.port());
   openPhantom(ws);
-  ASSERT_EQ(ws.request({{"type", "save_plan"}, {"name", "sigterm-plan"}})["type"], "saved");
+  ASSERT_EQ(ws.request({{"type", "save_plan"}, {"name", "sigterm-plan"}, {"replace", true}})["type"], "saved");
   ws.request({{"type", "confirm"}});
   ws.waitFor("job_progress");
   const auto t0 = std::chrono::steady_clock::now();

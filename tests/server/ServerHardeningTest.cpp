@@ -117,7 +117,11 @@ TEST(ServerHardening, ThePageCannotBeFramed) {
         server.port(), std::string("GET ") + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
     ASSERT_FALSE(replies.empty()) << target;
     EXPECT_EQ(replies[0][boost::beast::http::field::x_frame_options], "DENY") << target;
-    EXPECT_EQ(replies[0]["Content-Security-Policy"], "frame-ancestors 'none'") << target;
+    // The policy also forbids inline script (the page's own files only) on every reply.
+    const std::string policy(replies[0]["Content-Security-Policy"]);
+    for (const char* part : {"frame-ancestors 'none'", "script-src 'self'", "default-src 'self'", "object-src 'none'"})
+      EXPECT_NE(policy.find(part), std::string::npos) << target << ": " << policy;
+    EXPECT_EQ(policy.find("unsafe-inline"), std::string::npos) << target << ": " << policy;
   }
 }
 

@@ -83,6 +83,9 @@ nlohmann::json WsTestClient::next(std::chrono::milliseconds timeout) {
     io_.run();
     throw std::runtime_error("no message within " + std::to_string(timeout.count()) + " ms");
   }
+  if (ec == websocket::error::closed)  // the server's close code and reason, for tests to check
+    throw std::runtime_error("WebSocket closed: " + std::to_string(ws_.reason().code) + " " +
+                             std::string(ws_.reason().reason.data(), ws_.reason().reason.size()));
   if (ec) throw std::runtime_error("WebSocket read failed: " + ec.message());
   if (ws_.got_binary()) {  // a frame: kept aside, announced as a message of its own
     lastBinary_ = beast::buffers_to_string(buffer.data());

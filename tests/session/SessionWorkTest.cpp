@@ -162,7 +162,9 @@ TEST(PlanStore, SavesAtomicallyListsAndLoads) {
   PlanStore store(root);
   store.save("case-1", "b-plan", {{"x", 1}});
   store.save("case-1", "a-plan", {{"x", 2}});
-  store.save("case-1", "a-plan", {{"x", 3}});  // replaces
+  EXPECT_THROW(store.save("case-1", "a-plan", {{"x", 3}}), ProtocolError) << "not replaced unasked";
+  EXPECT_EQ(store.load("case-1", "a-plan")["x"], 2);
+  store.save("case-1", "a-plan", {{"x", 3}}, true);  // replaces
   EXPECT_EQ(store.list("case-1"), (std::vector<std::string>{"a-plan", "b-plan"}));
   EXPECT_EQ(store.load("case-1", "a-plan")["x"], 3);
   for (const auto& e : std::filesystem::directory_iterator(root / "case-1"))

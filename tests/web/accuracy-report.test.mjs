@@ -9,7 +9,7 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { readFileSync } from "node:fs";
-import { withPage } from "./harness.mjs";
+import { waitForPage, withPage } from "./harness.mjs";
 
 const report = JSON.parse(readFileSync(new URL("../../web/cohort/cohort.json", import.meta.url)));
 
@@ -20,7 +20,7 @@ test("accuracy report from the committed web/cohort snapshot: Table 4 with the l
     await page.goto(url);
     assert.equal(await page.locator("#report-body table").count(), 0, "nothing loaded before the report is opened");
     await page.click("#report summary");
-    await page.waitForFunction(() => document.querySelectorAll("#report-body table").length === 2, null, { timeout: 30000 });
+    await waitForPage(page, () => document.querySelectorAll("#report-body table").length === 2, null, { timeout: 30000 });
     // The snapshot is in the format the page reads: no stale-report warning.
     assert.equal(report.schema_version, await page.evaluate(() => REPORT_SCHEMA_VERSION), "web/cohort/cohort.json schema_version");
     assert.equal(await page.locator("#report-schema").count(), 0, "no stale-report warning");

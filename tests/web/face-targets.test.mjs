@@ -6,7 +6,7 @@ import { test } from "node:test";
 import assert from "node:assert/strict";
 import { mkdirSync } from "node:fs";
 import path from "node:path";
-import { artifacts, withPage } from "./harness.mjs";
+import { artifacts, waitForPage, withPage } from "./harness.mjs";
 
 test("plan from the face: typed targets move the sliders, a converged preview follows", { timeout: 300000 }, async () => {
   await withPage(async (page, url) => {
@@ -17,11 +17,11 @@ test("plan from the face: typed targets move the sliders, a converged preview fo
       if (typeof f.payload === "string") received.push(JSON.parse(f.payload));
     }));
     await page.goto(url);
-    await page.waitForFunction(() => document.querySelector("#case-select").options.length >= 1);
+    await waitForPage(page, () => document.querySelector("#case-select").options.length >= 1);
     await page.selectOption("#case-select", "phantom-0");
     await page.click("#open-case");
     await page.locator('input[aria-label="target soft_pogonion"]').waitFor({ timeout: 120000 });
-    await page.waitForFunction(() => /Solved in/.test(document.querySelector("#preview-figures").textContent), null, { timeout: 60000 });
+    await waitForPage(page, () => /Solved in/.test(document.querySelector("#preview-figures").textContent), null, { timeout: 60000 });
     assert.ok(await page.locator('input[aria-label="lock ramus_left anterior_mm"]').isChecked(), "the rami start locked");
 
     // Chin 3 mm forward, upper lip 1.5 mm forward; the maxilla keeps its height (locked).
@@ -34,7 +34,7 @@ test("plan from the face: typed targets move the sliders, a converged preview fo
     assert.equal(Number(await slider.inputValue()), 0);
     await page.click("#find-poses");
 
-    await page.waitForFunction(() => /every target reached|cannot be reached/.test(document.querySelector("#face-status").textContent), null, { timeout: 120000 });
+    await waitForPage(page, () => /every target reached|cannot be reached/.test(document.querySelector("#face-status").textContent), null, { timeout: 120000 });
     const status = await page.locator("#face-status").textContent();
     assert.match(status, /every target reached/, status);
     assert.ok(received.some((m) => m.type === "face_progress"), "the iterations were reported");
@@ -53,7 +53,7 @@ test("plan from the face: typed targets move the sliders, a converged preview fo
     const preview = received.slice().reverse().find((m) => m.type === "preview" && m.poses.mandible.anterior_mm === plan.poses.mandible.anterior_mm);
     assert.ok(preview && preview.figures.converged, "a converged preview of the poses found");
     assert.ok(Math.abs(preview.figures.landmarks.soft_pogonion.anterior_mm - 3) < 0.25, JSON.stringify(preview.figures.landmarks.soft_pogonion));
-    await page.waitForFunction(() => /Solved in/.test(document.querySelector("#preview-figures").textContent));
+    await waitForPage(page, () => /Solved in/.test(document.querySelector("#preview-figures").textContent));
 
     mkdirSync(artifacts, { recursive: true });
     await page.screenshot({ path: path.join(artifacts, "face-targets.png"), fullPage: true });

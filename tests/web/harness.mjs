@@ -60,3 +60,23 @@ export async function withBrowser(body) {
     rmSync(userData, { recursive: true, force: true });
   }
 }
+
+// Waits until `predicate(arg)`, run in the page, is truthy, and returns its value; as
+// page.waitForFunction, which cannot serve here: it evaluates the predicate with eval() inside the
+// page, and the page's Content-Security-Policy forbids eval. page.evaluate runs through the DevTools
+// protocol, which the policy does not govern, so the page is tested under its real policy.
+export async function waitForPage(page, predicate, arg, options = {}) {
+  const timeout = options.timeout ?? 30000;
+  const deadline = Date.now() + timeout;
+  for (;;) {
+    try {
+      const value = await page.evaluate(predicate, arg);
+      if (value) return value;
+    } catch (e) {
+      if (!/Execution context was destroyed|navigat/i.test(e.message)) throw e;  // a reload: try again
+    }
+    if (Date.now() > deadline)
+      throw new Error(`waitForPage: ${timeout} ms passed waiting for ${String(predicate).slice(0, 300)}`);
+    await new Promise((resolve) => setTimeout(resolve, 50));
+  }
+}

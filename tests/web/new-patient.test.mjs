@@ -10,7 +10,7 @@ import { execFileSync } from "node:child_process";
 import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
-import { artifacts, cli, withPage } from "./harness.mjs";
+import { artifacts, cli, waitForPage, withPage } from "./harness.mjs";
 
 test("new patient: upload surfaces, refusal named, case opens and previews", { timeout: 400000 }, async () => {
   const work = mkdtempSync(path.join(tmpdir(), "orthosim-new-patient-"));
@@ -24,7 +24,7 @@ test("new patient: upload surfaces, refusal named, case opens and previews", { t
       const pageErrors = [];
       page.on("pageerror", (e) => pageErrors.push(e.message));
       await page.goto(url);
-      await page.waitForFunction(() => document.querySelector("#case-select").options.length >= 5);
+      await waitForPage(page, () => document.querySelector("#case-select").options.length >= 5);
       await page.click("#new-patient summary");
       await page.fill('input[aria-label="case id"]', "jane-doe");
       await page.fill('input[aria-label="patient name"]', "Jane Doe");
@@ -36,34 +36,34 @@ test("new patient: upload surfaces, refusal named, case opens and previews", { t
 
       // A damaged mandible: refused, with its file named; nothing joins the list.
       await page.click("#import-patient");
-      await page.waitForFunction(() => /not imported/.test(document.querySelector("#import-status").textContent), null, { timeout: 120000 });
+      await waitForPage(page, () => /not imported/.test(document.querySelector("#import-status").textContent), null, { timeout: 120000 });
       assert.match(await page.locator("#import-status").textContent(), /broken_jaw\.stl/);
 
       // The right mandible: imported, listed, opened.
       await page.setInputFiles('input[aria-label="mandible file"]', file("mandible.stl"));
       await page.click("#import-patient");
-      await page.waitForFunction(() => /imported Jane Doe/.test(document.querySelector("#import-status").textContent), null, { timeout: 120000 });
+      await waitForPage(page, () => /imported Jane Doe/.test(document.querySelector("#import-status").textContent), null, { timeout: 120000 });
       assert.equal(Number(await page.locator("#import-progress").evaluate((p) => p.value)), 1);
-      await page.waitForFunction(() => [...document.querySelector("#case-select").options].some((o) => o.value === "jane-doe"));
+      await waitForPage(page, () => [...document.querySelector("#case-select").options].some((o) => o.value === "jane-doe"));
       const slider = page.locator('input[aria-label="maxilla anterior_mm"]');
       await slider.waitFor({ timeout: 180000 });
       assert.equal(await page.locator("#case-select").inputValue(), "jane-doe");
 
       // Le Fort I 2 mm forward: a converged preview in which the upper lip follows.
-      await page.waitForFunction(() => /Solved in/.test(document.querySelector("#preview-figures").textContent), null, { timeout: 120000 });
+      await waitForPage(page, () => /Solved in/.test(document.querySelector("#preview-figures").textContent), null, { timeout: 120000 });
       await slider.focus();
       for (let i = 0; i < 4; i++) await page.keyboard.press("ArrowRight");
       assert.equal(Number(await slider.inputValue()), 2);
-      await page.waitForFunction(() => {
+      await waitForPage(page, () => {
         const rows = [...document.querySelectorAll("#preview-figures tr")];
         const lip = rows.find((r) => /upper lip/.test(r.textContent));
         return lip && Number(lip.children[1].textContent) > 0.5;
       }, null, { timeout: 120000 });
-      await page.waitForFunction(() => document.querySelector("#solve-state").dataset.state === "converged", null, { timeout: 120000 });
+      await waitForPage(page, () => document.querySelector("#solve-state").dataset.state === "converged", null, { timeout: 120000 });
       // A click (no drag) on the face picks the skin under it.
       const box = await page.locator("#frame-box").boundingBox();
       await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2);
-      await page.waitForFunction(() => /picked skin at/.test(document.querySelector("#pick-info").textContent), null, { timeout: 30000 });
+      await waitForPage(page, () => /picked skin at/.test(document.querySelector("#pick-info").textContent), null, { timeout: 30000 });
 
       // Three landmarks placed by clicking the face, the Le Fort I shifted 2 mm up, the case rebuilt
       // with its progress shown, then a preview on the rebuilt case.
@@ -80,7 +80,7 @@ test("new patient: upload surfaces, refusal named, case opens and previews", { t
         await page.locator("#frame-box").scrollIntoViewIfNeeded();  // clicking the button may scroll the page
         const at = await page.locator("#frame-box").boundingBox();
         await page.mouse.click(at.x + at.width / 2, at.y + at.height / 2 + dy);
-        await page.waitForFunction((n) => [...document.querySelectorAll("#landmark-table tr")]
+        await waitForPage(page, (n) => [...document.querySelectorAll("#landmark-table tr")]
           .some((r) => r.textContent.startsWith(`${n} (new place)`)), name, { timeout: 30000 })
           .catch(async (e) => {
             console.log("edit-status:", await page.locator("#edit-status").textContent(), "| pick-info:",
@@ -92,17 +92,17 @@ test("new patient: upload surfaces, refusal named, case opens and previews", { t
       assert.equal(Number(await offset.inputValue()), 4, "the Le Fort I at its default level");
       await offset.fill("6");
       await page.fill('input[aria-label="le_fort_1 tilt"]', "5");
-      const progressSeen = page.waitForFunction(() => !document.querySelector("#rebuild-progress").hidden, null, { timeout: 60000 });
+      const progressSeen = waitForPage(page, () => !document.querySelector("#rebuild-progress").hidden, null, { timeout: 60000 });
       await page.click("#apply-edit");
       await progressSeen;
-      await page.waitForFunction(() => /case rebuilt/.test(document.querySelector("#edit-status").textContent), null, { timeout: 180000 });
+      await waitForPage(page, () => /case rebuilt/.test(document.querySelector("#edit-status").textContent), null, { timeout: 180000 });
       assert.equal(Number(await offset.inputValue()), 6, "the rebuilt case has the shifted Le Fort I");
       assert.equal(Number(await page.locator('input[aria-label="le_fort_1 tilt"]').inputValue()), 5, "and tilted");
       assert.equal(await page.locator("#landmark-table").textContent().then((t) => /new place/.test(t)), false);
       await slider.waitFor({ timeout: 60000 });
       await slider.focus();
       for (let i = 0; i < 2; i++) await page.keyboard.press("ArrowRight");
-      await page.waitForFunction(() => document.querySelector("#solve-state").dataset.state === "converged" &&
+      await waitForPage(page, () => document.querySelector("#solve-state").dataset.state === "converged" &&
         /upper lip/.test(document.querySelector("#preview-figures").textContent), null, { timeout: 120000 });
       mkdirSync(artifacts, { recursive: true });
       await page.screenshot({ path: path.join(artifacts, "new-patient.png"), fullPage: true });

@@ -8,7 +8,7 @@ import { test } from "node:test";
 import assert from "node:assert/strict";
 import { mkdirSync, statSync } from "node:fs";
 import path from "node:path";
-import { artifacts, withPage } from "./harness.mjs";
+import { artifacts, waitForPage, withPage } from "./harness.mjs";
 
 test("planning page: slider preview, fine confirm, screenshot", { timeout: 300000 }, async () => {
   await withPage(async (page, url) => {
@@ -29,15 +29,15 @@ test("planning page: slider preview, fine confirm, screenshot", { timeout: 30000
       });
     });
     await page.goto(url);
-    await page.waitForFunction(() => document.querySelector("#case-select").options.length >= 5);
+    await waitForPage(page, () => document.querySelector("#case-select").options.length >= 5);
     await page.selectOption("#case-select", "phantom-0");
     await page.click("#open-case");
 
     // The face arrives as a streamed frame, then the preview of the rest pose.
     const slider = page.locator('input[aria-label="maxilla anterior_mm"]');
     await slider.waitFor({ timeout: 120000 });
-    await page.waitForFunction(() => document.querySelector("#frame").src.startsWith("blob:"), null, { timeout: 60000 });
-    await page.waitForFunction(() => /Solved in/.test(document.querySelector("#preview-figures").textContent), null, { timeout: 60000 });
+    await waitForPage(page, () => document.querySelector("#frame").src.startsWith("blob:"), null, { timeout: 60000 });
+    await waitForPage(page, () => /Solved in/.test(document.querySelector("#preview-figures").textContent), null, { timeout: 60000 });
     const before = await page.locator("#frame").getAttribute("src");
 
     // Drag-like input: 8 key presses of 0.5 mm move the maxilla 4 mm forward; the number field
@@ -52,11 +52,11 @@ test("planning page: slider preview, fine confirm, screenshot", { timeout: 30000
     const number = page.locator('label.axis:has(input[aria-label="maxilla anterior_mm"]) input[type="number"]');
     assert.equal(Number(await number.inputValue()), 4);
     assert.equal(await number.getAttribute("step"), "0.5");
-    await page.waitForFunction(
+    await waitForPage(page, 
       (old) => document.querySelector("#frame").src !== old &&
         /upper lip/.test(document.querySelector("#preview-figures").textContent), before, { timeout: 60000 });
     // The newest pose is the one shown once the previews catch up.
-    await page.waitForFunction(() => {
+    await waitForPage(page, () => {
       const rows = [...document.querySelectorAll("#preview-figures tr")];
       const lip = rows.find((r) => /upper lip/.test(r.textContent));
       return lip && Number(lip.children[1].textContent) > 2.0;
@@ -68,27 +68,27 @@ test("planning page: slider preview, fine confirm, screenshot", { timeout: 30000
     assert.ok(frames.some((f) => f && f.state === "linear" && sentPoses.some((p) => p.id === f.pose_id)),
       `a frame drew a dragged pose linearly: ${JSON.stringify(frames)}`);
     // The face shown is the converged one once the previews caught up; the frame rate is shown.
-    await page.waitForFunction(() => document.querySelector("#solve-state").dataset.state === "converged", null, { timeout: 60000 });
+    await waitForPage(page, () => document.querySelector("#solve-state").dataset.state === "converged", null, { timeout: 60000 });
     assert.match(await page.locator("#solve-state").textContent(), /converged \(last solve \d+\.\d+ s/);
     assert.match(await page.locator("#frame-info").textContent(), /\d+ fps/);
 
     // View buttons and mouse orbit redraw the face.
     await page.click('#views button[data-view="profile"]');
-    await page.waitForFunction(() => /profile view/.test(document.querySelector("#frame-info").textContent), null, { timeout: 30000 });
+    await waitForPage(page, () => /profile view/.test(document.querySelector("#frame-info").textContent), null, { timeout: 30000 });
     const profile = await page.locator("#frame").getAttribute("src");
     const box = await page.locator("#frame-box").boundingBox();
     await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
     await page.mouse.down();
     await page.mouse.move(box.x + box.width / 2 + 120, box.y + box.height / 2, { steps: 6 });
     await page.mouse.up();
-    await page.waitForFunction((old) => document.querySelector("#frame").src !== old, profile, { timeout: 30000 });
+    await waitForPage(page, (old) => document.querySelector("#frame").src !== old, profile, { timeout: 30000 });
 
     // Fine confirm to 100 %.
     await page.click("#confirm");
-    await page.waitForFunction(() => /done/.test(document.querySelector("#job-status").textContent), null, { timeout: 240000 });
+    await waitForPage(page, () => /done/.test(document.querySelector("#job-status").textContent), null, { timeout: 240000 });
     assert.equal(Number(await page.locator("#job-progress").evaluate((p) => p.value)), 1);
     assert.match(await page.locator("#job-status").textContent(), /Coarse vs fine on the skin/);
-    await page.waitForFunction(() => /difference/.test(document.querySelector("#frame-info").textContent), null, { timeout: 30000 })
+    await waitForPage(page, () => /difference/.test(document.querySelector("#frame-info").textContent), null, { timeout: 30000 })
       .catch(async (e) => { console.log("frame-info:", await page.locator("#frame-info").textContent(), await page.locator("#messages").textContent()); throw e; });
 
     mkdirSync(artifacts, { recursive: true });

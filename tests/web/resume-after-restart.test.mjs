@@ -10,7 +10,7 @@ import { spawn, spawnSync } from "node:child_process";
 import { mkdirSync, mkdtempSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
-import { artifacts, cli, dataDir, startServer, withBrowser } from "./harness.mjs";
+import { artifacts, cli, dataDir, startServer, waitForPage, withBrowser } from "./harness.mjs";
 
 const haveRedis = spawnSync("sh", ["-c", "command -v redis-server"]).status === 0;
 if (!haveRedis && process.env.CI === "true") throw new Error("redis-server is not on PATH (CI=true: scripts/setup-deps.sh installs it)");
@@ -62,25 +62,25 @@ test("a fine job queued from the page survives a server restart and is shown don
         if (typeof f.payload === "string") received.push(JSON.parse(f.payload));
       }));
       await page.goto(`http://127.0.0.1:${port}/`);
-      await page.waitForFunction(() => document.querySelector("#case-select").options.length >= 1);
+      await waitForPage(page, () => document.querySelector("#case-select").options.length >= 1);
       await page.selectOption("#case-select", "phantom-0");
       await page.click("#open-case");
-      await page.waitForFunction(() => /Solved in/.test(document.querySelector("#preview-figures").textContent), null, { timeout: 120000 });
+      await waitForPage(page, () => /Solved in/.test(document.querySelector("#preview-figures").textContent), null, { timeout: 120000 });
       await page.click("#confirm");
-      await page.waitForFunction(() => /queued/.test(document.querySelector("#job-status").textContent), null, { timeout: 30000 });
+      await waitForPage(page, () => /queued/.test(document.querySelector("#job-status").textContent), null, { timeout: 30000 });
       const queued = received.find((m) => m.type === "job_queued");
       assert.ok(queued, "the job was queued");
 
       // The server stops (its job stays on Redis) and starts again on the same port.
       first.server.kill("SIGTERM");
       assert.equal(await stopped(first.server), 0, "a clean stop");
-      await page.waitForFunction(() => /disconnected/.test(document.querySelector("#connection").textContent), null, { timeout: 10000 });
+      await waitForPage(page, () => /disconnected/.test(document.querySelector("#connection").textContent), null, { timeout: 10000 });
       const second = startServer(dataDir, args, port);
       children.push(second.server);
       assert.equal(await second.port, port);
 
       // The page reconnects, opens the case again and resumes the job, which is still queued.
-      await page.waitForFunction(() => /resumed/.test(document.querySelector("#job-status").textContent), null, { timeout: 60000 });
+      await waitForPage(page, () => /resumed/.test(document.querySelector("#job-status").textContent), null, { timeout: 60000 });
       const resumed = received.find((m) => m.type === "resumed");
       assert.deepEqual(resumed.jobs.map((j) => j.job), [queued.job], JSON.stringify(resumed));
       assert.equal(resumed.jobs[0].state, "queued");
@@ -89,7 +89,7 @@ test("a fine job queued from the page survives a server restart and is shown don
       const { worker, ready } = startWorker(url);
       children.push(worker);
       await ready;
-      await page.waitForFunction(() => /done in/.test(document.querySelector("#job-status").textContent), null, { timeout: 180000 });
+      await waitForPage(page, () => /done in/.test(document.querySelector("#job-status").textContent), null, { timeout: 180000 });
       const done = received.find((m) => m.type === "job_done");
       assert.equal(done.job, queued.job);
       assert.ok(done.figures.converged);
