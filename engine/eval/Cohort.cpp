@@ -90,7 +90,7 @@ std::vector<CohortPatient> makeCohort() {
   // Occlusal cant corrected by rolling the maxilla, mandible shifted to the midline.
   add("M10", "asymmetry", 3, "Le Fort I", "BSSO", false, {cut("le_fort_1", "skull"), cut("bsso", "mandible")},
       {move("maxilla", 2, 0, 0, 3, 0, 0, {"upper_incisor_tip"}), move("mandible", 2, 0, -3)});
-  // Beyond Table 1 (issue 18): large class III setbacks, where the lips press on the teeth. The
+  // Beyond Table 1: large class III setbacks, where the lips press on the teeth. The
   // phantom's contact stays as its case declares it. The phantom's lower incisors are 3.5 mm ahead
   // of the upper ones, so these plans leave them behind: they test the magnitude, not an occlusion.
   add("M11", "class III", 2, "none", "BSSO", false, {cut("bsso", "mandible")}, {move("mandible", -10, 0, 0)});

@@ -1,9 +1,9 @@
 #pragma once
-// The synthetic cohort of issue 7: ten phantom patients (M1-M10) mirroring the procedure mix of the
+// The synthetic cohort of the accuracy evaluation: ten phantom patients (M1-M10) mirroring the procedure mix of the
 // paper's Table 1 (Le Fort I with and without segmentation, one Le Fort II, BSSO and USSO, one
 // genioplasty, class II / III / asymmetry / open bite morphologies, one case without maxillary
-// surgery), and two class III setbacks of issue 18 (M11: 10 mm BSSO setback alone; M12: 5 mm Le Fort
-// I advancement and 8 mm BSSO setback), each a phantom variant with its osteotomies and a plan of
+// surgery), and two large class III setbacks, where the lips press on the teeth (M11: 10 mm BSSO setback alone;
+// M12: 5 mm Le Fort I advancement and 8 mm BSSO setback), each a phantom variant with its osteotomies and a plan of
 // clinically usual magnitudes (../shared/notes/clinical-primer.md: 2-10 mm, up to 5-10 degrees). Frame of the phantom:
 // mm, +x posterior, +y right, +z superior (advancement is -x, impaction +z). Each fragment's motion is its own world
 // motion: a genioplasty piece that rides on a moved mandible has the mandible's rotation and centre plus its own

@@ -1,5 +1,5 @@
 #pragma once
-// The design of a prediction band (issue 21, A.2): which model parameters a band varies, their
+// The design of a prediction band: which model parameters a band varies, their
 // ranges, and the runs. Young's modulus is not among them: with the bones' motion prescribed the
 // face does not depend on it (docs/solver.md). The runs are the nominal one, each parameter at its
 // low and high end one at a time (what a landmark's sensitivity to it is read from), and the
@@ -51,7 +51,7 @@ struct DesignNominal {
 };
 
 struct DesignOptions {
-  // Scales every range about the nominal: 1 the issue's ranges (Poisson's ratio +-0.02, blend
+  // Scales every range about the nominal: 1 the full ranges (Poisson's ratio +-0.02, blend
   // width +-5 mm, contact stiffness x0.3 to x3, bond distance +-1 mm), 0.5 half of each (the stiffness factors'
   // logarithms halved). The lips' two levels do not scale.
   double rangeScale = 1.0;

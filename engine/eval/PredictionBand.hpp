@@ -1,5 +1,5 @@
 #pragma once
-// A prediction band (issue 21, A.2): the case's plan solved from rest over a parameter design
+// A prediction band: the case's plan solved from rest over a parameter design
 // (eval/ParameterDesign), each variant a scene built from the modified case on the same tissue
 // mesh (no remeshing), with its own Model and solve. What comes out: the skin envelope about the
 // nominal prediction (eval/SkinEnvelope), each soft-tissue landmark's range about its nominal

@@ -1,5 +1,5 @@
 #pragma once
-// The envelope of a set of predicted skins about a nominal one (issue 21, A.2): at each vertex the
+// The envelope of a set of predicted skins about a nominal one (what a prediction band shows): at each vertex the
 // least and greatest signed offset of the variants from the nominal skin along its vertex normal
 // (positive outward: tissue fuller). Offsets along the surface are not counted: a vertex that
 // slides over the face leaves the face where it was, which is what a surgeon compares.

@@ -1,5 +1,5 @@
 #pragma once
-// Surfaces from a label map (issue 20): a segmentation saved as one image whose voxels hold label
+// Surfaces from a label map: a segmentation saved as one image whose voxels hold label
 // numbers (3D Slicer's or ITK-SNAP's label map volume, NIfTI .nii/.nii.gz or NRRD .nrrd/.nhdr,
 // raw or gzip-encoded). Each region (a set of labels) becomes a closed triangle surface through VTK:
 // discrete flying edges on the region's mask, windowed-sinc smoothing, quadric decimation.

@@ -1,5 +1,5 @@
 #pragma once
-// Planning from the face (issue 21, part B): the fragment poses whose predicted face puts chosen
+// Planning from the face: the fragment poses whose predicted face puts chosen
 // soft-tissue landmarks where the surgeon wants them. Levenberg-Marquardt over the planning
 // fragments' anatomical pose values (mm and degrees, scene/AnatomicalPose) within the server's
 // limits, some values optionally locked. The Jacobian of the landmarks by the pose values is the

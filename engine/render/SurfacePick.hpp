@@ -1,5 +1,5 @@
 #pragma once
-// What a click on a drawn surface points at (issue 20: landmarks placed in the streamed view): the
+// What a click on a drawn surface points at (landmarks placed in the streamed view): the
 // camera's ray through the clicked pixel against the surface as drawn, and the same material
 // point on the surface at rest (through the hit triangle's barycentric coordinates), which is where
 // a landmark is stored.

@@ -1,5 +1,5 @@
 #pragma once
-// The lips' inner surface bonded instead of sliding (issue 21, A.2): a variant of a scene with
+// The lips' inner surface bonded instead of sliding (a parameter of the prediction band): a variant of a scene with
 // contact in which the contact nodes that touch a bone at rest are bonded to the fragment whose
 // surface they touch, as if the mucosa stuck to the teeth and gums. "Touch" is a distance: a node
 // within `touchDistance` mm of a contact surface at rest. The nodes further away keep sliding.

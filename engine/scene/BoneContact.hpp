@@ -1,5 +1,5 @@
 #pragma once
-// The bonded tissue group of a bone that comes without one (issue 3; the ArtiSynth face gives a
+// The bonded tissue group of a bone that comes without one (the ArtiSynth face gives a
 // node set for the mandible but none for the maxilla): the candidate tissue nodes, typically the
 // deep (bone-side) surface, that lie within a distance of the bone surface. Distance is unsigned
 // distance to the surface, so nodes a little inside the bone (segmentations overlap) count too.

@@ -1,5 +1,5 @@
 #pragma once
-// A surgeon's own patient as a case (issue 20): the segmented skin, skull (with the maxilla) and
+// A surgeon's own patient as a case: the segmented skin, skull (with the maxilla) and
 // mandible exported from 3D Slicer, Mimics or ITK-SNAP as STL, OBJ or PLY surfaces, or one label map
 // (NIfTI, NRRD) with the label numbers of each (mesh/LabelMapSurfaces makes the surfaces), optional
 // air cavities, texture and landmarks, and the osteotomy templates to cut. Every file is checked (units, closed,

@@ -1,6 +1,7 @@
 #pragma once
-// The anatomical frame from landmarks instead of the files' axes (issue 20): superior is the normal
-// of the Frankfort horizontal (through both porions and the orbitale(s)), right runs from the left
+// The anatomical frame from landmarks instead of the files' axes (an imported patient's files need
+// not be aligned with the face): superior is the normal of the Frankfort horizontal (through both
+// porions and the orbitale(s)), right runs from the left
 // porion to the right one within that plane, and anterior completes the right-handed frame
 // (anterior = superior x right), pointing from the porions towards the orbitale.
 #include <optional>

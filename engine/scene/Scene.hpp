@@ -55,7 +55,7 @@ struct ContactSpec {
 };
 // 20: a node carrying stress s over its h^2 sinks s / (20 E) of h. 10 let the tissue a 10 mm
 // setback drags back sink 1.06 mm into the ramus on the phantom; with the C2 penalty and its exact
-// Hessian twice as stiff costs no iterations (issue 18).
+// Hessian twice as stiff costs no iterations.
 constexpr double kDefaultContactFactor = 20.0;
 // The contact penalty's cubic onset spans this fraction of the mean edge length of penetration
 // (contact/SmoothPenalty): 0.02 mm on the coarse phantom, below the penetration a contact of a

@@ -1,6 +1,6 @@
 #pragma once
 // The first-order response of a converged state to the poses of prescribed fragments, so that a
-// pose change can be shown at once, before Newton has converged on it (issue 19). At a converged
+// pose change can be shown at once during a drag, before Newton has converged on it. At a converged
 // state z* of the free DoFs, r(z*, p) = 0 for the fragment pose parameters p; differentiating,
 //   H_zz dz/dp = -(P^T H dx_c/dp + P^T dg_contact/dp),
 // with dx_c/dp how the constrained nodes move with the pose and dg_contact/dp how the contact

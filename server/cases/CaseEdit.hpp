@@ -1,6 +1,6 @@
 #pragma once
-// Changing an imported patient's landmarks and osteotomies from the page (issue 20, points 2 and
-// 3): the new landmarks and cuts are written into a copy of its case.json, which is loaded as a
+// Changing an imported patient's landmarks and osteotomies from the page: the new landmarks
+// and cuts are written into a copy of its case.json, which is loaded as a
 // check (every cut placed from its landmarks) and only then renamed over the case file. A moved
 // porion or orbitale re-derives the anatomical frame (scene/LandmarkFrame). A refused edit leaves
 // the case as it was.

@@ -1,5 +1,5 @@
 #pragma once
-// A patient uploaded from the page (issue 20): the files of the "New patient" form become a case
+// A patient uploaded from the page: the files of the "New patient" form become a case
 // folder <data>/patients/<id>/ through the engine's importer (scene/CaseImport), which checks them
 // and writes the folder complete or not at all, and the case joins the library. The uploaded files
 // are staged in <data>/imports/<id>.upload-<host>-<pid>-<random>/ under their own names (so that every message

@@ -1,4 +1,4 @@
-// `orthosim bench band-cohort`: the sensitivity table of issue 21 (A.3): for every patient of the
+// `orthosim bench band-cohort`: the sensitivity table of the prediction band: for every patient of the
 // synthetic cohort (engine/eval/Cohort) the prediction band of its plan at coarse resolution, and
 // per parameter and soft-tissue landmark the median over the patients of the one-at-a-time effect
 // |landmark at the high end - at the low end| (bonded minus sliding for the lips): which parameter

@@ -1,4 +1,4 @@
-// `orthosim band CASE.json`: the prediction band of a case's plan (issue 21, A.2): the plan solved
+// `orthosim band CASE.json`: the prediction band of a case's plan: the plan solved
 // over the parameter design (engine/eval/PredictionBand), the envelope surfaces written beside the
 // nominal skin, the landmark ranges and the parameters' effects in band.json.
 #include <chrono>

@@ -1,7 +1,7 @@
-// `orthosim bench cohort`: the synthetic cohort of issue 7 (engine/eval/Cohort) solved at coarse
+// `orthosim bench cohort`: the synthetic cohort (engine/eval/Cohort) solved at coarse
 // and fine resolution and measured against a discretisation reference (a much finer mesh solved to
 // tight tolerances): the paper's Table 4 (triangles, solve time, share of the face within 1 and
-// 3 mm, and the lips' and soft chin's distance to the reference, issue 18), a speed-versus-error
+// 3 mm, and the lips' and soft chin's distance to the reference), a speed-versus-error
 // plot over mesh resolutions and solver tolerances, and the soft-to-hard movement ratios at the
 // landmarks beside the published bands (engine/eval/Plausibility). The runs, measurements, ratios
 // and their JSON are engine/eval's; this file prints and collects them. With --redis the runs are

@@ -1,5 +1,5 @@
 // `orthosim compare PREDICTED REFERENCE [--case CASE.json [--rest SKIN]] [--map MAP.ply] [--image MAP.png]
-// [--json FILE]`: the error of a predicted skin against a reference surface (issue 7, the paper's
+// [--json FILE]`: the error of a predicted skin against a reference surface (the paper's
 // section 3).
 #include <cstdio>
 #include <fstream>

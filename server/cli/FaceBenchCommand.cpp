@@ -1,4 +1,4 @@
-// `orthosim bench face`: planning from the face on the synthetic cohort (issue 21, figures). For
+// `orthosim bench face`: planning from the face on the synthetic cohort. For
 // each patient its plan is solved on the coarse model, every soft-tissue landmark of the predicted
 // face becomes a target, and the fit starts from rest: how many iterations and solves it takes,
 // how long (median over repeats), how far the landmarks miss, and how far the bones it finds are

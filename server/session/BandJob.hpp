@@ -1,5 +1,5 @@
 #pragma once
-// A prediction band (issue 21, A.2) as one job of the service's job queue, beside the fine jobs:
+// A prediction band as one job of the service's job queue, beside the fine jobs:
 // the plan solved over the parameter design at coarse or fine resolution, with its progress (which
 // solve of how many, the fraction of the whole), its cancellation and its failure as protocol
 // messages (docs/protocol.md, "Prediction band"). What the session does with the band is its own.

@@ -1,4 +1,4 @@
-// The prediction band in a planning session (issue 21, A.2 and A.3; docs/protocol.md,
+// The prediction band in a planning session (docs/protocol.md,
 // "Prediction band"): `band` queues a band job of the current poses on the job queue the fine jobs
 // use (on the workers with `serve --redis`: jobs/BandWorkerJob, jobs/BandResultFile); when it is
 // done the band's width becomes the view's "band" colour map and `band_view` flips the drawn skin

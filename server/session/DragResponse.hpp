@@ -1,5 +1,5 @@
 #pragma once
-// The face during a drag (issue 19): the linear response of the session's newest converged preview
+// The face during a drag: the linear response of the session's newest converged preview
 // to every movable fragment's six pose parameters (solver/LinearResponse), so that a new pose is
 // drawn at once, before the nonlinear preview for it has converged; and how far such a linear face
 // was from the converged one, which every preview reports.

@@ -1,4 +1,4 @@
-// `orthosim plan-from-face` (issue 21, B.4): a targets file in, the poses, the case file's plan and
+// `orthosim plan-from-face`: a targets file in, the poses, the case file's plan and
 // the predicted skin out; bad targets refused naming the field.
 #include <gtest/gtest.h>
 #include <unistd.h>

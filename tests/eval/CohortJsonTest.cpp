@@ -1,4 +1,4 @@
-// Table 4's landmark columns (issue 18): a cohort run's distance to the reference at the lower lip,
+// Table 4's landmark columns: a cohort run's distance to the reference at the lower lip,
 // upper lip and soft pogonion is between the same skin point on both (a skin that slid along itself
 // counts, though the surfaces coincide), in the run and in its JSON.
 #include <gtest/gtest.h>

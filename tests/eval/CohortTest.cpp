@@ -1,6 +1,6 @@
 // The synthetic cohort (engine/eval/Cohort) mirrors the procedure mix of the paper's Table 1, adds
-// two class III setbacks of 8-10 mm (issue 18), and its cases open like any user's case, with every
-// planned fragment made by its cuts.
+// two class III setbacks of 8-10 mm where the lips press on the teeth, and its cases open like any
+// user's case, with every planned fragment made by its cuts.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -22,7 +22,7 @@ namespace {
 TEST(Cohort, MirrorsThePapersTableOne) {
   const std::vector<CohortPatient>& all = cohortPatients();
   ASSERT_EQ(kTableOnePatients, 10u);
-  ASSERT_EQ(all.size(), kTableOnePatients + 2);  // and the two setbacks of issue 18
+  ASSERT_EQ(all.size(), kTableOnePatients + 2);  // and the two class III setbacks
   const std::vector<CohortPatient> c(all.begin(), all.begin() + kTableOnePatients);
   for (size_t i = 0; i < all.size(); ++i) EXPECT_EQ(all[i].id, "M" + std::to_string(i + 1));
   std::map<std::string, int> maxilla, mandible, diagnosis;
@@ -107,7 +107,7 @@ TEST(Cohort, AsymmetryCorrectionsBringTheChinTowardsTheMidline) {
   fs::remove_all(dir);
 }
 
-// Issue 18: class III patients with large mandibular setbacks, where the lips press on the teeth:
+// Class III patients with large mandibular setbacks, where the lips press on the teeth:
 // one BSSO setback alone and one bimaxillary (Le Fort I advancement and BSSO setback), 8-10 mm,
 // with the phantom's lips-teeth contact as its case declares it.
 TEST(Cohort, ClassThreeSetbacksOfEightToTenMillimetresWithContact) {

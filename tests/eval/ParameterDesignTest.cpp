@@ -1,4 +1,4 @@
-// The band's design (issue 21, A.2): the runs a band makes and what they hold, the contact
+// The band's design: the runs a band makes and what they hold, the contact
 // parameters only for a scene with contact, ranges that scale about the nominal, bad options named.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The prediction band on the coarse phantom (issue 21, A.2): the band contains the nominal
+// The prediction band on the coarse phantom: the band contains the nominal
 // prediction (every vertex's envelope and every landmark's range hold 0), and it widens at the lips
 // and chin when the parameter ranges grow (range scale 0.5 against 1). The bonded-lips variant
 // bonds the contact nodes that touch the bone at rest; the gaps are printed (the measurement

@@ -1,4 +1,4 @@
-// Hard cases (issue 7, ctest label `hard`): plans at the edge of what the solver should take. Each
+// Hard cases (ctest label `hard`): plans at the edge of what the solver should take. Each
 // must end in a valid state - every position finite, no inverted active element - either converged
 // or failed with a message and the last converged state kept. None may hang. Each test prints
 // "hard case <name>: converged|refused, N iterations, T s, load fraction F" (N counts every Newton
@@ -364,7 +364,7 @@ TEST_F(HardPhantom, SetbackOf10mmWithLipsTeethContact) {
   FragmentMotion m;
   m.translation = -10.0 * spec().frame.anterior;
   const HardRun run = solve("10 mm setback with contact (phantom)", coarse().scene, {{"mandible", m}});
-  // Before the smooth contact energy with its curvature term (issue 18): 36 iterations in 3
+  // Before the smooth contact energy with its curvature term: 36 iterations in 3
   // substeps, the first stalling at step lengths of 1/4. Now the tissue follows in one substep.
   expectConvergedWithin(run.result, 18);  // today 10 iterations in 1 substep
   EXPECT_EQ(run.result.substeps.size(), 1u);
@@ -406,7 +406,7 @@ std::map<std::string, FragmentMotion> intoEachOther(const AnatomicalFrame& frame
 }
 
 // 8 mm each (16 mm of overlap), without and with the lips-teeth contact (with it, before the
-// smooth contact energy of issue 18: 128 iterations, 73 s on a loaded machine).
+// smooth contact energy: 128 iterations, 73 s on a loaded machine).
 TEST_F(HardPhantom, FragmentsMovedIntoEachOther) {
   Scene scene = coarse().scene;
   scene.contacts.clear();
@@ -430,7 +430,7 @@ TEST_F(HardPhantom, FragmentsMovedIntoEachOtherWithContact) {
 
 // Refused by the solver's iteration budget: with the case's budget (max_total_iterations, 300)
 // at load fraction 0.715 (43 mm), after about 80 ever shorter substeps; until the mouth slit's
-// walls were split into short edges (issue 18) the stiffer lips gave up at 0.397. Run here with
+// walls were split into short edges, the stiffer lips gave up at 0.397. Run here with
 // half the budget (the refusal is the same, in half the time): pinned refused, past 0.35 of the
 // plan, within the budget plus one substep's iterations (bounded work instead of a time limit;
 // the ctest timeout catches a hang).

@@ -1,4 +1,4 @@
-// Band and cohort jobs through Redis Streams (issue 22; docs/deployment.md "Past one machine"),
+// Band and cohort jobs through Redis Streams (docs/deployment.md "Past one machine"),
 // each test with its own real redis-server on a free port: a band on a worker is the in-process
 // band; cancel reaches a band running on a worker; malformed band and cohort jobs are refused, not
 // run; `bench cohort --redis` gives the in-process figures.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 22: the planning workflow test (tests/server/PlanningWorkflowTest.cpp) passes unchanged
+# The planning workflow test (tests/server/PlanningWorkflowTest.cpp) passes unchanged
 # through Redis with two worker processes. A real redis-server on a free port, two `orthosim
 # worker` processes on the test data folder, and every test server started with --redis
 # (tests/server/ServerProcess reads ORTHOSIM_TEST_REDIS). Passes when the tests pass and the

@@ -1,4 +1,4 @@
-// Surface import and checks (issue 3, "Import"): every format round-trips a closed surface with its
+// Surface import and checks: every format round-trips a closed surface with its
 // texture coordinates; every malformed file is refused with its name and its defect; what can be
 // repaired without moving the surface is repaired and reported.
 #include <gtest/gtest.h>

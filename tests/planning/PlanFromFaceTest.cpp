@@ -1,4 +1,4 @@
-// Planning from the face (issue 21, part B): landmark probes, the landmark Jacobian against finite
+// Planning from the face: landmark probes, the landmark Jacobian against finite
 // differences of nonlinear solves, the round trip from a plan's predicted face back to its poses
 // (contact on and off), unreachable targets and bad input.
 #include <gtest/gtest.h>

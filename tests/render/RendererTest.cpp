@@ -48,7 +48,7 @@ TEST_F(Renderer, PhantomImageIsNotBlank) {
 // Soft landmarks on the skin, projected with the camera's own matrices, land on covered pixels at
 // the depth the depth buffer holds there (landmarks facing the camera: the midline ones lie on the
 // silhouette in a profile); outside the projected skin everything is background.
-// Landmark markers (issue 20: each landmark shown where it is): a marker is drawn in its colour at
+// Landmark markers (each landmark shown where it is): a marker is drawn in its colour at
 // the pixel its point projects to, over the skin, and nothing of it without markers.
 TEST_F(Renderer, AMarkerIsDrawnWhereItsLandmarkProjects) {
   auto r = phantomRenderer();

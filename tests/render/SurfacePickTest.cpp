@@ -1,5 +1,5 @@
-// Picking (issue 20, point 2): a click at a known pixel of a known view returns the surface point
-// that pixel shows, within one pixel's footprint, and the same point of the skin at rest.
+// Picking (landmarks are placed by clicking the face): a click at a known pixel of a known view
+// returns the surface point that pixel shows, within one pixel's footprint, and the same point of the skin at rest.
 #include <gtest/gtest.h>
 
 #include "RenderPhantom.hpp"

@@ -1,4 +1,4 @@
-// Bonded groups derived from a bone surface (issue 3, "when a bone comes without a bonded group"):
+// Bonded groups derived from a bone surface (for a bone that comes without a bonded group):
 // candidates are selected by their distance to the bone, the report gives the count and the
 // distances, an empty selection is reported rather than thrown, and on the real ArtiSynth face the
 // derived mandible group recovers the demo's attached nodes.

@@ -1,4 +1,4 @@
-// Issue 18, point 4: no flat tetrahedra between nodes that all follow one bone. On variant 3's
+// No flat tetrahedra between nodes that all follow one bone. On variant 3's
 // fine mesh TetGen (surface kept, -Y) left 75 tetrahedra with all four nodes on one bone below 5
 // degrees, down to 0.21, on the mandible's interface where the right sagittal split's blend runs;
 // a few tenths of a millimetre of blend turned them over, their free neighbours had to pass

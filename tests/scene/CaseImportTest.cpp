@@ -1,4 +1,4 @@
-// A patient's own surfaces become a case (issue 20, points 1 and 5): the phantom's exported
+// A patient's own surfaces become a case: the phantom's exported
 // surfaces go in as a user's would, and come out as a case that loads, cuts and meshes; units,
 // open surfaces, bones outside the skin, unknown templates and an existing folder are refused
 // with the file and the defect named, and nothing is left behind.
@@ -65,7 +65,7 @@ TEST_F(CaseImport, ThePhantomsSurfacesBecomeACaseThatCutsAndMeshes) {
   EXPECT_EQ(coarse.skinEmbedding.numPoints(), coarse.tissue.skin.numVertices());
 }
 
-// The issue's acceptance for surfaces: the phantom's own exported surfaces (STL and OBJ) imported
+// Acceptance for surfaces: the phantom's own exported surfaces (STL and OBJ) imported
 // as a patient predict the phantom's Le Fort I within 1 mm on 95% of the face region.
 TEST_F(CaseImport, ThePhantomsSurfacesPredictTheSameLeFortI) {
   CaseImportInput in = phantomInput();

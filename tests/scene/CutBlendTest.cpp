@@ -1,4 +1,4 @@
-// Smooth coupling at a cut (issue 3, paper section 2.3.3): the weights follow the 10 mm rule, the
+// Smooth coupling at a cut (paper section 2.3.3): the weights follow the 10 mm rule, the
 // bonded tissue of a cut bone splits into the two fragments and a blended band, and a model with
 // that band solves with the cut nodes at the blend of the fragment transforms.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// A patient from a label map (issue 20, point 1): the phantom's own surfaces voxelised here at
+// A patient from a label map: the phantom's own surfaces voxelised here at
 // 0.5 mm into a label image (1 soft tissue, 2 skull, 3 mandible), written as NIfTI by VTK's writer
 // and as NRRD (raw and gzip-encoded), imported through VTK's discrete flying edges, smoothing and
 // decimation, and solved: the Le Fort I prediction matches the phantom's own. A label the map lacks,
@@ -259,7 +259,7 @@ TEST_F(LabelMapImport, VoxelsTheFileCannotHoldAreRefusedBeforeTheyAreRead) {
   EXPECT_NE(m.find("big.nii: truncated: the voxels need 1000000000 bytes"), std::string::npos) << m;
 }
 
-// The issue's acceptance: the phantom's own surfaces as a label map give a case whose Le Fort I
+// Acceptance for a label map: the phantom's own surfaces as a label map give a case whose Le Fort I
 // prediction (the phantom's plan, 5 mm advancement) matches the phantom's within 1 mm on 95% of the
 // face region.
 TEST_F(LabelMapImport, ThePhantomAsALabelMapPredictsTheSameLeFortI) {

@@ -1,4 +1,4 @@
-// The anatomical frame from the Frankfort horizontal (issue 20, point 2), against closed forms: the
+// The anatomical frame from the Frankfort horizontal, against closed forms: the
 // canonical head gives the canonical axes, any rigid motion of the landmarks moves the axes with
 // it, a tilted plane tilts superior by its angle, and defective landmarks are named.
 #include <gtest/gtest.h>

@@ -285,7 +285,7 @@ TEST(Osteotomy, EachTemplateNamesTheLandmarksItIsPlacedFrom) {
   EXPECT_THROW(osteotomyLandmarks("le_fort_3"), std::invalid_argument);
 }
 
-// Tilt (issue 20, point 3): the level cut of a Le Fort I turns about the right axis through its
+// Tilt: the level cut of a Le Fort I turns about the right axis through its
 // level point; the genioplasty's 10 degree rise grows by the tilt. Closed form for both normals.
 TEST(Osteotomy, TiltTurnsTheLevelCutAboutTheRightAxis) {
   const AnatomicalFrame f;

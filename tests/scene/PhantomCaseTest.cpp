@@ -1,6 +1,6 @@
 // The built-in phantom through the whole surface path: written as a case, meshed at coarse and
 // fine resolution (Boolean difference, simplification, TetGen), cut by the osteotomy templates,
-// solved. Checks what the issue asks: the expected fragments and groups, exact couplings, the
+// solved. Checks what the surface path must give: the expected fragments and groups, exact couplings, the
 // 10 mm blend rule, the cache, and coarse against fine within 1 mm on 95% of the skin.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -185,7 +185,7 @@ TEST_F(PhantomCase, AdvancementMovesTheUpperLipAndNotTheChin) {
   EXPECT_LT(std::abs(chin), 0.2);
 }
 
-// The issue's acceptance: a 5 mm advancement predicted on the coarse and the fine model agrees
+// What the surface path must give: a 5 mm advancement predicted on the coarse and the fine model agrees
 // within 1 mm on 95% of the skin area (full-resolution skin, the same for both).
 TEST_F(PhantomCase, CoarseAndFineAgreeWithinOneMillimetreOnNinetyFivePercentOfTheSkin) {
   const CaseModel fine = buildCaseModel(spec(), Resolution::Fine, {ORTHOSIM_TEST_CACHE_DIR});
@@ -216,7 +216,7 @@ TEST_F(PhantomCase, CoarseAndFineAgreeWithinOneMillimetreOnNinetyFivePercentOfTh
   EXPECT_GE(share, 0.95);
 }
 
-// Lips and cheeks on teeth and bone (issue 4): a 10 mm mandibular setback with the phantom's
+// Lips and cheeks on teeth and bone: a 10 mm mandibular setback with the phantom's
 // contact pairs keeps every contact node outside every tooth and bone surface to within 1 mm (the
 // default penalty, 20 E h, lets the node the dragged tissue presses on the front of the right
 // ramus sink 0.72 mm; 10 E h let it sink 1.06 mm once the lips' long edges were split); the same
@@ -264,7 +264,7 @@ TEST_F(PhantomCase, ContactKeepsLipsAndCheeksOutOfTeethAndBoneInASetback) {
 
 // The phantom's contact reaches the lips and cheeks (within max_depth_mm of the skin), not the
 // floor of its mouth, which in a patient is attached to the mandible: without the limit, the
-// floor's nodes next to the lingual alveolus join, 35-41 mm below the skin (issue 18: they made a
+// floor's nodes next to the lingual alveolus join, 35-41 mm below the skin (they made a
 // setback take 9 Newton iterations instead of 4).
 TEST_F(PhantomCase, ContactStopsAtTheDepthOfLipsAndCheeks) {
   ASSERT_EQ(spec().contacts.size(), 1u);
@@ -294,7 +294,7 @@ TEST_F(PhantomCase, ContactStopsAtTheDepthOfLipsAndCheeks) {
   EXPECT_GT(limited, deep) << "lips and cheeks keep most of the contact";
 }
 
-// Issue 21, A.1: with the bones' motion prescribed and no body force, the equilibrium does not
+// With the bones' motion prescribed and no body force, the equilibrium does not
 // depend on Young's modulus: the tissue energy and the default contact penalty (20 E h) both scale
 // with E. So a prediction band must come from the parameters that change the answer (Poisson's
 // ratio, blend width, contact stiffness relative to E, ...), not from E. A contact stiffness fixed
@@ -324,7 +324,7 @@ TEST_F(PhantomCase, TheFaceDoesNotDependOnYoungsModulus) {
       << "a stiffness that does not scale with E changes the answer where lips press on teeth";
 }
 
-// Issue 18, point 2: on a 10 mm setback with the lips-teeth contact, the coarse preview puts the
+// On a 10 mm setback with the lips-teeth contact, the coarse preview puts the
 // lower and upper lip and the soft chin within 1 mm of the fine confirm. Before the mouth slit's
 // flat walls were split into short edges (mesh/LongEdgeSplit) the fine mesh kept them as a few
 // triangles up to 46 mm long, which stiffened the lips: the fine lower lip followed the chin 0.70
@@ -357,7 +357,7 @@ TEST_F(PhantomCase, CoarseSetbackPutsLipsAndChinWithinOneMillimetreOfTheFine) {
   EXPECT_GT(moved[2].error.norm(), 8.0);
 }
 
-// The live-drag view (issue 19): from the converged 10 mm setback, where tissue presses on the
+// The live-drag view: from the converged 10 mm setback, where tissue presses on the
 // mandible, a further step of the maxilla (0.5 mm forward, 0.3 mm up, 0.5 degrees of pitch) and the
 // mandible (0.5 mm back) shown by the linear response lands close to the converged answer, at the
 // lips and chin too.

@@ -95,7 +95,7 @@ TEST_F(CaseEditFile, PlacedPorionsAndOrbitaleGiveTheFrame) {
   EXPECT_NEAR(std::acos(spec.frame.superior.z()) * 180 / M_PI, 10.0, 1e-6) << "tilted with the plane";
 }
 
-// A tilted Le Fort I (issue 20, point 3: shift or tilt): the maxilla's upper bound turns 8 degrees
+// A tilted Le Fort I (a cut can be shifted or tilted): the maxilla's upper bound turns 8 degrees
 // about the right axis, its front raised.
 TEST_F(CaseEditFile, ATiltTurnsTheLeFortILevel) {
   CaseEdit tilt;

@@ -1,4 +1,4 @@
-// A new patient uploaded over HTTP (issue 20, point 1): the phantom's own exported surfaces become a
+// A new patient uploaded over HTTP: the phantom's own exported surfaces become a
 // case in the list that opens and previews, is still there after a restart, and each bad upload gets
 // its own clear error and leaves no case and no staged file behind.
 #include <gtest/gtest.h>
@@ -297,7 +297,7 @@ TEST_F(PatientUpload, AnAcceptedImportAlwaysOpensAndARefusedOneFreesItsId) {
   EXPECT_EQ(opened["type"], "opened") << opened.dump();
 }
 
-// Points 2 and 3 of issue 20 on an imported patient: a landmark moved and the Le Fort I shifted
+// Editing an imported patient's landmarks and osteotomies: a landmark moved and the Le Fort I shifted
 // 2 mm up rewrite the case, which opens again with its models rebuilt and progress on the way; a
 // refused edit leaves the case file as it was; built-in cases cannot be edited; the edit stays.
 TEST_F(PatientUpload, EditingLandmarksAndCutsRebuildsTheCaseWithProgress) {

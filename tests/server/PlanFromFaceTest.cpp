@@ -1,4 +1,4 @@
-// plan_from_face over the real server (issue 21, B.1-B.3): targets in, iterations reported, the
+// plan_from_face over the real server: targets in, iterations reported, the
 // poses found become the session's and their converged preview follows; a bone limit is said
 // plainly; bad targets are refused naming the field, and the session keeps its poses.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The prediction band through the server (issue 21, A.2 and A.3): bad requests named, the band job
+// The prediction band through the server: bad requests named, the band job
 // queued on the job pool with progress per solve, band_done with landmark ranges in the anatomical
 // axes and band widths, the band's width as a colour map and its extremes drawn, the envelopes
 // exported; a running band job cancelled within a solve.

@@ -143,7 +143,7 @@ TEST_F(PlanningFrames, ABurstOfCameraMovesLeavesNoBacklog) {
   EXPECT_LT(frames, moves) << "frames still waiting are replaced by newer ones";
 }
 
-// The drag view (issue 19): once a preview has converged and its linear response is ready, a new
+// The drag view: once a preview has converged and its linear response is ready, a new
 // pose is drawn at once from the response (a frame marked "linear" with the set_poses id, no solve),
 // and its preview then reports how far that linear face was from the converged one and draws the
 // converged face (marked "converged").

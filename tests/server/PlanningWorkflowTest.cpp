@@ -121,7 +121,7 @@ TEST(PlanningWorkflow, CoarsePreviewThenFineConfirmThenExport) {
   }
 }
 
-// Issue 20, point 4: a real face on the first start. The ArtiSynth face shipped in cases/ is
+// A real face on the first start. The ArtiSynth face shipped in cases/ is
 // listed, opens with its Le Fort I and BSSO fragments and its landmarks, and previews a plan.
 TEST(PlanningWorkflow, TheArtisynthFaceIsBuiltIn) {
   test::ServerProcess server;

@@ -1,4 +1,4 @@
-// Server hardening (issue 17): no open door off the loopback, the page cannot be framed, idle
+// Server hardening: no open door off the loopback, the page cannot be framed, idle
 // sessions give their slots back, and running out of file descriptors does not make the accept
 // loop spin. Each test failed before its fix.
 #include <gtest/gtest.h>
@@ -75,7 +75,7 @@ TEST(ServerHardening, EveryInterfaceWithoutATokenDoesNotStart) {
   EXPECT_EQ(r.output.find("listening on"), std::string::npos) << r.output;
 }
 
-// The attack of the issue: bound to 0.0.0.0, a page of attacker.example (resolving to this
+// The attack this guards against: bound to 0.0.0.0, a page of attacker.example (resolving to this
 // machine) opened /ws with a matching Origin and read the plans. Now its Host is refused.
 TEST(ServerHardening, EveryInterfaceRefusesForeignHostsEvenWhenInsecure) {
   test::ServerProcess server({"--host", "0.0.0.0", "--insecure"});
@@ -242,7 +242,7 @@ void openPhantom(test::WsTestClient& ws) {
   ws.waitFor("opened", 300s);
 }
 
-// The pose of the issue (pitch 30, roll -30, yaw 30) ran one preview for 104 s. A preview now has
+// A pose of pitch 30, roll -30, yaw 30 once ran one preview for 104 s. A preview now has
 // a budget; beyond it the preview is refused with the reason and the last good one is kept.
 TEST(ServerHardening, APreviewOverItsBudgetIsRefusedAndTheLastGoodKept) {
   test::ServerProcess server({"--preview-iterations", "8"});

@@ -1,4 +1,4 @@
-// The drag view's error figures (issue 19): how far the linear face was from the converged one,
+// The drag view's error figures: how far the linear face was from the converged one,
 // on the full-resolution skin, overall and at the lips.
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-// Saved plans name the osteotomy set they were made on (issue 20, point 3): loading one on a case
+// Saved plans name the osteotomy set they were made on: loading one on a case
 // cut differently is refused with both sets named, and plans saved before that still load.
 #include <gtest/gtest.h>
 

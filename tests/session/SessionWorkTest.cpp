@@ -199,7 +199,7 @@ TEST(ExportStore, KeepsTheNewestWithinBounds) {
   EXPECT_NE(a, b);
 }
 
-// Issue 17: one session's 16 exports turned another session's download link into 404.
+// One session's 16 exports used to turn another session's download link into 404.
 TEST(ExportStore, OneSessionsExportsNeverPushOutAnothers) {
   ExportStore store(16, 1000);
   const std::string other = store.add("s2", "other.stl", "model/stl", std::string(100, 'o'));

@@ -1,5 +1,5 @@
 #pragma once
-// Issue 20's acceptance for an imported phantom: its Le Fort I prediction (the phantom's own plan)
+// The acceptance check for an imported phantom: its Le Fort I prediction (the phantom's own plan)
 // against the phantom's, on the face region, and where the plan moved the skin more than 2 mm
 // (there the face at rest must be far off, so the comparison can fail).
 #include <gtest/gtest.h>

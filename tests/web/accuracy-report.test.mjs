@@ -1,6 +1,6 @@
-// Browser test of the accuracy report on the planning page (issue 7): opening it shows the
-// committed cohort report (web/cohort/) as the paper's Table 4 (with the lips and soft pogonion,
-// issue 18), the speed-versus-error plot and the soft-to-hard ratios, with exactly the flags the
+// Browser test of the accuracy report on the planning page: opening it shows the
+// committed cohort report (web/cohort/) as the paper's Table 4 (with the lips and soft pogonion),
+// the speed-versus-error plot and the soft-to-hard ratios, with exactly the flags the
 // report counts. It checks the page against
 // that committed SNAPSHOT of `orthosim bench cohort`, not against a fresh run (20+ min): that the
 // snapshot is in the bench's current format is checked by its schema_version here (against the

@@ -1,4 +1,4 @@
-// Browser test of planning from the face (issue 21, B.3): open the phantom, tick the chin and the
+// Browser test of planning from the face: open the phantom, tick the chin and the
 // upper lip, type their targets, find poses; the server's iterations are shown, the sliders move
 // to the poses found, the misses are listed and a converged preview of those poses follows.
 // Environment as harness.mjs says.

@@ -1,4 +1,4 @@
-// Browser test of "New patient" (issue 20, point 1): the phantom's own surfaces, written by
+// Browser test of "New patient": the phantom's own surfaces, written by
 // `orthosim phantom`, are uploaded through the page's form; a bad file is refused with its name,
 // then the good set becomes a case that opens, moving its Le Fort I maxilla gives a converged
 // preview, a click on the face picks the skin; then three landmarks are placed by clicking the

@@ -1,4 +1,4 @@
-// Browser test of the planning page (issue 6): Debian's Chromium, headless, driven by
+// Browser test of the planning page: Debian's Chromium, headless, driven by
 // playwright-core, against a real `orthosim serve` started here. Opens the phantom, moves the
 // maxilla advancement slider (0.5 mm steps), sees a new frame, a solve time and the converged state, confirms on the fine model to
 // 100 %, and saves a screenshot as a test artefact.

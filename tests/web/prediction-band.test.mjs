@@ -1,4 +1,4 @@
-// Browser test of the prediction band (issue 21, A.3): opens the phantom, advances the maxilla
+// Browser test of the prediction band: opens the phantom, advances the maxilla
 // 4 mm, runs a coarse band from the page, sees its progress, the band-width colour map and the
 // landmark table, flips the drawn face between the low and high envelopes, and exports the high
 // envelope. Leaves a screenshot in ARTIFACT_DIR. Environment as in harness.mjs.

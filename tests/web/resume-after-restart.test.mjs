@@ -1,4 +1,4 @@
-// Browser test of issue 22's "nothing lost": a fine job queued from the page on Redis survives a
+// Browser test that nothing queued is lost: a fine job queued from the page on Redis survives a
 // restart of the server. The page confirms (no worker yet, so the job waits on the stream), the
 // server stops and starts again on the same port under the same replica name, the page reconnects
 // by itself, opens the case again and resumes the job; a worker then runs it and the page shows
