@@ -15,7 +15,7 @@
 #include "jobs/CohortResultFile.hpp"
 #include "jobs/JobMessage.hpp"
 #include "jobs/JobStream.hpp"
-#include "session/RandomId.hpp"
+#include "util/RandomId.hpp"
 
 extern char** environ;
 

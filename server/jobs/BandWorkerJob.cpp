@@ -1,7 +1,7 @@
 #include "jobs/BandWorkerJob.hpp"
 
+#include "jobs/BandJob.hpp"
 #include "jobs/BandResultFile.hpp"
-#include "session/BandJob.hpp"
 
 namespace orthosim::server {
 

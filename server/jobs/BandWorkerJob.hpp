@@ -8,8 +8,8 @@
 #include <optional>
 
 #include "cases/CaseLibrary.hpp"
+#include "jobs/FineJob.hpp"
 #include "jobs/JobMessage.hpp"
-#include "session/FineJob.hpp"
 
 namespace orthosim::server {
 

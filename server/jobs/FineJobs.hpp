@@ -13,8 +13,8 @@
 
 #include "cases/CaseLibrary.hpp"
 #include "jobs/BandJobMessage.hpp"
-#include "session/FineJob.hpp"
-#include "session/JobQueue.hpp"
+#include "jobs/FineJob.hpp"
+#include "jobs/JobQueue.hpp"
 
 namespace orthosim::server {
 

@@ -7,7 +7,7 @@
 #include "jobs/JobNumbers.hpp"
 #include "jobs/JobRecords.hpp"
 #include "jobs/JobStream.hpp"
-#include "session/RandomId.hpp"
+#include "util/RandomId.hpp"
 
 namespace orthosim::server {
 using nlohmann::json;

@@ -9,9 +9,9 @@
 #include "cases/PatientImport.hpp"
 #include "jobs/BandWorkerJob.hpp"
 #include "jobs/CohortWorkerJob.hpp"
+#include "jobs/FineJob.hpp"
 #include "jobs/JobStream.hpp"
 #include "mesh/TemporaryName.hpp"
-#include "session/FineJob.hpp"
 
 namespace orthosim::server {
 using nlohmann::json;

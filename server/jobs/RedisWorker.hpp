@@ -22,9 +22,9 @@
 #include <vector>
 
 #include "cases/CaseLibrary.hpp"
+#include "jobs/FineJob.hpp"
 #include "jobs/JobMessage.hpp"
 #include "jobs/RedisConnection.hpp"
-#include "session/FineJob.hpp"
 
 namespace orthosim::server {
 

@@ -5,7 +5,7 @@
 #include <thread>
 
 #include "mesh/TemporaryName.hpp"
-#include "session/RandomId.hpp"
+#include "util/RandomId.hpp"
 
 namespace orthosim::server {
 using namespace std::chrono_literals;

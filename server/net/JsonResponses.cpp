@@ -1,6 +1,6 @@
 #include "net/JsonResponses.hpp"
 
-#include "session/ClientText.hpp"
+#include "util/ClientText.hpp"
 
 namespace orthosim::net {
 

@@ -11,8 +11,8 @@
 #include "net/PatientUploadRoute.hpp"
 #include "net/RequestTarget.hpp"
 #include "render/PngFile.hpp"
-#include "session/ClientText.hpp"
-#include "session/Utf8Text.hpp"
+#include "util/ClientText.hpp"
+#include "util/Utf8Text.hpp"
 
 namespace orthosim::net {
 namespace {

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "mesh/TemporaryName.hpp"
-#include "session/RandomId.hpp"
+#include "util/RandomId.hpp"
 
 namespace orthosim::net {
 namespace fs = std::filesystem;

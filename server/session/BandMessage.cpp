@@ -6,14 +6,23 @@
 #include <chrono>
 
 #include "eval/PredictionBandJson.hpp"
+#include "jobs/BandJob.hpp"
 #include "jobs/BandResultFile.hpp"
 #include "mesh/SurfaceImport.hpp"
-#include "session/BandJob.hpp"
 #include "session/PlanningSession.hpp"
 #include "session/SkinExport.hpp"
 
 namespace orthosim::server {
 using nlohmann::json;
+namespace {
+
+Resolution bandResolution(const std::string& name) {
+  if (name == "coarse") return Resolution::Coarse;
+  if (name == "fine") return Resolution::Fine;
+  throw ProtocolError("bad_value", "/resolution: '" + name + "' is not one of coarse, fine", "/resolution");
+}
+
+}  // namespace
 
 struct PlanningSession::BandResult {
   long long job = 0;

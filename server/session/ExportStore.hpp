@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "session/RandomId.hpp"
+#include "util/RandomId.hpp"
 
 namespace orthosim::server {
 

@@ -15,10 +15,10 @@
 #include "cases/PatientImport.hpp"
 #include "cases/ScanStore.hpp"
 #include "jobs/FineJobs.hpp"
+#include "jobs/JobQueue.hpp"
 #include "session/AnatomicalPose.hpp"
 #include "session/DataFolderLock.hpp"
 #include "session/ExportStore.hpp"
-#include "session/JobQueue.hpp"
 #include "session/PlanStore.hpp"
 #include "session/SessionSlots.hpp"
 

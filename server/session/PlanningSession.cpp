@@ -9,24 +9,24 @@
 
 #include "eval/LandmarkError.hpp"
 #include "eval/SkinFigures.hpp"
+#include "jobs/FineJob.hpp"
+#include "jobs/SolveFiguresJson.hpp"
 #include "planning/LandmarkProbe.hpp"
 #include "render/SurfaceDifference.hpp"
 #include "scene/LandmarkFrame.hpp"
 #include "scene/Osteotomy.hpp"
 #include "scene/PlanningFragments.hpp"
-#include "session/ClientText.hpp"
 #include "session/DragResponse.hpp"
-#include "session/FineJob.hpp"
 #include "session/OpenCase.hpp"
 #include "session/PlanStamp.hpp"
 #include "session/SavedPlan.hpp"
 #include "session/SkinExport.hpp"
-#include "session/SolveFiguresJson.hpp"
 #include "session/UserName.hpp"
 #include "solver/Model.hpp"
 #include "solver/NewtonSolver.hpp"
 #include "solver/PinchedTissue.hpp"
 #include "solver/PlanSolver.hpp"
+#include "util/ClientText.hpp"
 
 namespace orthosim::server {
 using nlohmann::json;

@@ -14,9 +14,9 @@
 
 #include "eval/PredictionBand.hpp"
 #include "jobs/BandResultFile.hpp"
+#include "jobs/FineJob.hpp"
 #include "planning/FaceRequestJson.hpp"
 #include "session/AnatomicalPose.hpp"
-#include "session/FineJob.hpp"
 #include "session/MessageReader.hpp"
 #include "session/PlanningService.hpp"
 #include "session/SerialWork.hpp"

@@ -4,7 +4,7 @@
 #include <optional>
 
 #include "session/ProtocolError.hpp"
-#include "session/Utf8Text.hpp"
+#include "util/Utf8Text.hpp"
 
 namespace orthosim::server {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "eval/ResultJson.hpp"
+#include "jobs/SolveFiguresJson.hpp"
 #include "scene/BlockScene.hpp"
-#include "session/SolveFiguresJson.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim {

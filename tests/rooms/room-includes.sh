@@ -1,13 +1,34 @@
 #!/bin/sh
-# The engine's rooms and the rooms each may include, so data flows one way (scene -> model ->
-# solver -> result -> render/export): the engine never includes the server, physics and the solver
-# never include the renderer, the renderer takes images and solve states but not the phantom or the
-# coupling. Prints every include that breaks the map, and a room the map does not know; exits 1
-# if there is any. Usage: room-includes.sh <engine directory>
-engine=${1:?usage: room-includes.sh <engine directory>}
+# The rooms of the engine or of the server and the rooms each may include, so data flows one way.
+# Engine (scene -> model -> solver -> result -> render/export): the engine never includes the
+# server, physics and the solver never include the renderer, the renderer takes images and solve
+# states but not the phantom or the coupling. Server (cli -> net -> session -> jobs -> cases ->
+# util): the commands assemble the network, the network serves sessions, sessions queue jobs, jobs
+# solve cases; each room may include the engine's rooms. Prints every include that breaks the map,
+# and a room the map does not know; exits 1 if there is any.
+# Usage: room-includes.sh <engine directory> | room-includes.sh --server <server directory>
+if [ "$1" = "--server" ]; then
+  kind=server
+  shift
+else
+  kind=engine
+fi
+root=${1:?usage: room-includes.sh [--server] <directory>}
 
 # Rooms (or single headers, room/File.hpp) a room may include besides its own.
 allowed() {
+  if [ $kind = server ]; then
+    case $1 in
+      util) echo "" ;;
+      cases) echo "util" ;;
+      jobs) echo "cases util" ;;
+      session) echo "jobs cases util" ;;
+      net) echo "session jobs cases util" ;;
+      cli) echo "net session jobs cases util" ;;
+      *) echo "?" ;;
+    esac
+    return
+  fi
   case $1 in
     math | image) echo "" ;;
     mesh) echo "math" ;;
@@ -25,7 +46,7 @@ allowed() {
 }
 
 status=0
-for dir in "$engine"/*/; do
+for dir in "$root"/*/; do
   room=$(basename "$dir")
   rules=$(allowed "$room")
   if [ "$rules" = "?" ]; then
@@ -40,6 +61,7 @@ for dir in "$engine"/*/; do
       target=${target%\"}
       other=${target%%/*}
       [ "$other" = "$room" ] && continue
+      [ $kind = server ] && [ ! -d "$root/$other" ] && continue  # the engine's rooms
       ok=0
       for rule in $rules; do
         if [ "$rule" = "$other" ] || [ "$rule" = "$target" ]; then ok=1; fi

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "session/ClientText.hpp"
 #include "session/MessageReader.hpp"
+#include "util/ClientText.hpp"
 
 namespace orthosim::server {
 namespace {

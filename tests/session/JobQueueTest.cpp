@@ -12,7 +12,7 @@
 #include <future>
 #include <thread>
 
-#include "session/JobQueue.hpp"
+#include "jobs/JobQueue.hpp"
 
 namespace orthosim::server {
 namespace {

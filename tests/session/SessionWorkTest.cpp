@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "TestWait.hpp"
+#include "jobs/JobQueue.hpp"
 #include "session/ExportStore.hpp"
-#include "session/JobQueue.hpp"
 #include "session/PlanStore.hpp"
 #include "session/ProtocolError.hpp"
 #include "session/SerialWork.hpp"

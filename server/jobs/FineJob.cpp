@@ -1,9 +1,9 @@
-#include "session/FineJob.hpp"
+#include "jobs/FineJob.hpp"
 
 #include <chrono>
 
 #include "eval/SkinFigures.hpp"
-#include "session/SolveFiguresJson.hpp"
+#include "jobs/SolveFiguresJson.hpp"
 #include "solver/Model.hpp"
 #include "solver/NewtonSolver.hpp"
 #include "solver/PlanSolver.hpp"

@@ -1,4 +1,4 @@
-#include "session/SolveFiguresJson.hpp"
+#include "jobs/SolveFiguresJson.hpp"
 
 #include <algorithm>
 #include <cmath>

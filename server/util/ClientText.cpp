@@ -1,4 +1,4 @@
-#include "session/ClientText.hpp"
+#include "util/ClientText.hpp"
 
 #include <filesystem>
 #include <string_view>

@@ -1,4 +1,4 @@
-#include "session/JobQueue.hpp"
+#include "jobs/JobQueue.hpp"
 
 #include <sys/resource.h>
 #include <sys/syscall.h>

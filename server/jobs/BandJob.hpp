@@ -12,7 +12,7 @@
 
 #include "cases/CaseLibrary.hpp"
 #include "eval/PredictionBand.hpp"
-#include "session/FineJob.hpp"
+#include "jobs/FineJob.hpp"
 
 namespace orthosim::server {
 
@@ -21,9 +21,6 @@ struct BandSolve {
   PredictionBand band;
   double seconds = 0;  // since the job started, the mesh included
 };
-
-// "coarse" or "fine"; throws ProtocolError bad_value naming /resolution otherwise.
-Resolution bandResolution(const std::string& name);
 
 // Job `job` of case `caseId`: the band of `plan`. Reports job_progress on the way, job_cancelled
 // when `cancel` is set, job_failed when the nominal solve does not converge; returns the band

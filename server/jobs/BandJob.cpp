@@ -1,17 +1,9 @@
-#include "session/BandJob.hpp"
+#include "jobs/BandJob.hpp"
 
 #include <chrono>
 
-#include "session/ProtocolError.hpp"
-
 namespace orthosim::server {
 using nlohmann::json;
-
-Resolution bandResolution(const std::string& name) {
-  if (name == "coarse") return Resolution::Coarse;
-  if (name == "fine") return Resolution::Fine;
-  throw ProtocolError("bad_value", "/resolution: '" + name + "' is not one of coarse, fine", "/resolution");
-}
 
 std::optional<BandSolve> runBandJob(long long job, CaseLibrary& cases, const std::string& caseId, Resolution resolution,
                                     const std::map<std::string, FragmentMotion>& plan, const BandOptions& options,

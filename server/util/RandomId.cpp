@@ -1,4 +1,4 @@
-#include "session/RandomId.hpp"
+#include "util/RandomId.hpp"
 
 #include <random>
 

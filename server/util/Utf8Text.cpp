@@ -1,4 +1,4 @@
-#include "session/Utf8Text.hpp"
+#include "util/Utf8Text.hpp"
 
 namespace orthosim::server {
 
