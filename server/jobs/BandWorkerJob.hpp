@@ -1,6 +1,6 @@
 #pragma once
 // A band job (kind "band") on `orthosim worker`: the band of the job's plan solved as the server's
-// own pool would (session/BandJob: runBandJob, with its progress, cancel and failure messages),
+// own pool would (jobs/BandJob: runBandJob, with its progress, cancel and failure messages),
 // written to the data folder (jobs/BandResultFile) for the server to read.
 #include <atomic>
 #include <filesystem>

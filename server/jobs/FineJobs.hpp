@@ -87,7 +87,7 @@ class FineJobs {
   virtual void shutdown() = 0;
 };
 
-// The bounded pool of this process (session/JobQueue, the service's, which band jobs share).
+// The bounded pool of this process (jobs/JobQueue, the service's, which band jobs share).
 class InProcessFineJobs : public FineJobs {
  public:
   InProcessFineJobs(CaseLibrary& cases, JobQueue& queue) : cases_(cases), queue_(queue) {}
