@@ -106,7 +106,15 @@ TEST(RedisJobs, ConfirmOnAWorkerGivesTheInProcessFigures) {
   EXPECT_EQ(phases.front(), "mesh");
   EXPECT_EQ(phases.back(), "solve");
   EXPECT_TRUE(test::waitUntil([&] { return pendingJobs(redis) == 0; }, 5s, 50ms)) << "acknowledged";
-  EXPECT_FALSE(fs::exists(fs::path(test::testDataDir()) / server::resultFileName("x")));
+  // The worker's result file (jobs/<server>-<job>.nodes) was read and removed.
+  const std::string ending = "-" + std::to_string(job) + ".nodes";
+  ASSERT_TRUE(fs::is_directory(fs::path(test::testDataDir()) / "jobs")) << "where the worker wrote it";
+  std::error_code ec;
+  for (const auto& f : fs::directory_iterator(fs::path(test::testDataDir()) / "jobs", ec)) {
+    const std::string name = f.path().filename().string();
+    EXPECT_FALSE(name.size() >= ending.size() && name.compare(name.size() - ending.size(), ending.size(), ending) == 0)
+        << name << " was left behind";
+  }
   // The finished fine result is the session's: it exports.
   const json exported = ws.request({{"type", "export"}, {"format", "stl"}, {"result", "fine"}});
   EXPECT_EQ(exported["type"], "exported") << exported.dump();
