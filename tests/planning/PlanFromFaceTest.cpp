@@ -197,10 +197,12 @@ TEST(PlanFromFace, AFitWithEveryValueFreeStaysWithinTheLimitsInBoundedWork) {
   std::cout << r.iterations << " iterations, " << r.solves << " solves, " << r.seconds << " s: " << r.message << "\n";
   EXPECT_FALSE(r.reached);
   EXPECT_FALSE(r.atLimit.empty());
+  // The fit goes as far as the limits let it (a translation ends on its 5 mm bound, which the clamp
+  // alone would not reach) and brings the chin closer than it was (15 mm away at rest).
   const Eigen::Matrix<double, 6, 1> v = r.poses.at("mandible").values();
-  EXPECT_LE(v.head<3>().cwiseAbs().maxCoeff(), 5.0);
-  EXPECT_LE(v.tail<3>().cwiseAbs().maxCoeff(), 5.0);
-  EXPECT_LE(r.iterations, options.maxIterations);
+  EXPECT_NEAR(v.head<3>().cwiseAbs().maxCoeff(), 5.0, 1e-6) << v.transpose();
+  EXPECT_LE(v.tail<3>().cwiseAbs().maxCoeff(), 5.0 + 1e-9);
+  EXPECT_LT(r.residuals[0].distance(), 12.0);
   EXPECT_LT(r.solves, 60) << "each refused trial is a solve: the fit must not wander";
 }
 
