@@ -11,9 +11,9 @@ PACKAGES=(
   nlohmann-json3-dev
   libcli11-dev
   libgtest-dev
-  libassimp-dev          # STL/OBJ/PLY surface import and export (engine/mesh/SurfaceImport)
+  libassimp-dev          # STL/OBJ/PLY surface import and export (engine/io/SurfaceImport)
   libcgal-dev            # exact self-intersection test of surfaces (engine/mesh/SelfIntersection)
-  libtet1.5-dev          # TetGen 1.5: tetrahedralises closed surfaces (engine/mesh/Tetrahedralize)
+  libtet1.5-dev          # TetGen 1.5: tetrahedralises closed surfaces (engine/meshing/Tetrahedralize)
   libmeshoptimizer-dev   # surface simplification to coarse/fine skin counts (engine/mesh)
   libturbojpeg0-dev      # JPEG: phantom skin texture, streamed frames
   libboost-dev           # Boost 1.74 headers: Beast/Asio HTTP and WebSocket server (server/net), header-only
@@ -24,7 +24,7 @@ PACKAGES=(
   libgl1-mesa-dri        # Mesa's drivers, among them llvmpipe, the CPU rasteriser (CI, this machine)
   libpng-dev             # PNG images: `orthosim render` output, PNG textures (engine/render)
   libstb-dev             # stb_easy_font.h: the bitmap font of the colour-map legend (header only)
-  libvtk9-dev            # VTK 9.1: label maps (NIfTI, NRRD) to surfaces (engine/mesh/LabelMapSurfaces)
+  libvtk9-dev            # VTK 9.1: label maps (NIfTI, NRRD) to surfaces (engine/io/LabelMapSurfaces)
   libvtk-dicom-dev       # vtk-dicom 0.8 with GDCM: CT and CBCT DICOM series (engine/volume/DicomSeries)
   libminizip-dev         # minizip (zlib's contrib): a CT scan uploaded as one .zip (server/cases/ScanFiles)
   libhiredis-dev         # hiredis 0.14, the Redis project's own C client: fine jobs on Redis Streams (server/jobs)

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "mesh/AtomicFile.hpp"
+#include "system/AtomicFile.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseFile.hpp"
 

@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "mesh/AtomicFile.hpp"
+#include "system/AtomicFile.hpp"
 
 namespace orthosim {
 

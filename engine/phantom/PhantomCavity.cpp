@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "math/Angles.hpp"
-#include "mesh/SweepSurface.hpp"
+#include "meshing/SweepSurface.hpp"
 #include "phantom/ImplicitShapes.hpp"
 
 namespace orthosim::phantom {

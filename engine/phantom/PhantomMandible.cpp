@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "math/Angles.hpp"
-#include "mesh/SweepSurface.hpp"
+#include "meshing/SweepSurface.hpp"
 #include "phantom/ImplicitShapes.hpp"
 #include "phantom/PhantomDesign.hpp"
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <system_error>
 
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "phantom/Phantom.hpp"
 
 namespace orthosim {

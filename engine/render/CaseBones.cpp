@@ -1,6 +1,6 @@
 #include "render/CaseBones.hpp"
 
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "scene/BoneFragments.hpp"
 
 namespace orthosim::render {

@@ -1,7 +1,7 @@
 #include "scene/BlockScene.hpp"
 
 #include "math/Angles.hpp"
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 
 namespace orthosim {
 

@@ -9,14 +9,14 @@
 #include <sstream>
 #include <variant>
 
-#include "mesh/LabelMapSurfaces.hpp"
+#include "io/LabelMapSurfaces.hpp"
 #include "mesh/PointsInside.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "mesh/SurfacePieces.hpp"
-#include "mesh/SurfaceRules.hpp"
-#include "mesh/TemporaryName.hpp"
+#include "meshing/SurfaceRules.hpp"
+#include "system/TemporaryName.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/CaseModel.hpp"
 #include "scene/CaseTissue.hpp"
@@ -68,7 +68,7 @@ SurfaceMesh readSurface(const std::string& path) {
 }
 
 // `mesh` as read from `path`, scaled to mm and checked (repairs listed in `warnings`): a cavity as it is,
-// skin and bones repaired by the rule the solve applies too (mesh/SurfaceRules).
+// skin and bones repaired by the rule the solve applies too (meshing/SurfaceRules).
 SurfaceMesh checked(SurfaceMesh mesh, const std::string& path, double scale,
                     const std::variant<SurfaceRequirement, SurfaceRole>& rule, std::vector<std::string>& warnings) {
   mesh.vertices *= scale;

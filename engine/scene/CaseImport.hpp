@@ -1,7 +1,7 @@
 #pragma once
 // A surgeon's own patient as a case: the segmented skin, skull (with the maxilla) and
 // mandible exported from 3D Slicer, Mimics or ITK-SNAP as STL, OBJ or PLY surfaces, or one label map
-// (NIfTI, NRRD) with the label numbers of each (mesh/LabelMapSurfaces makes the surfaces), optional
+// (NIfTI, NRRD) with the label numbers of each (io/LabelMapSurfaces makes the surfaces), optional
 // air cavities, texture and landmarks, and the osteotomy templates to cut. Every file is checked (units, closed,
 // manifold, self-intersection, bones inside the skin) and every problem comes back naming the file
 // and what is wrong; the case folder is written complete or not at all.
@@ -24,7 +24,7 @@ struct CaseImportInput {
   std::string mandible;  // moved as a whole or cut by the mandible's templates
   // Or, instead of the three surfaces: one label map (.nii, .nii.gz, .nrrd, .nhdr) and the labels of
   // the soft tissue, the skull and the mandible in it. The skin is the outer boundary of all three
-  // together; the surfaces are in the map's patient frame, LPS mm (mesh/LabelMapSurfaces.hpp).
+  // together; the surfaces are in the map's patient frame, LPS mm (io/LabelMapSurfaces.hpp).
   std::string labelMap;
   std::vector<int> tissueLabels, skullLabels, mandibleLabels;
   // Or a CT or CBCT scan: the folder of its DICOM series (searched recursively) and, when it holds

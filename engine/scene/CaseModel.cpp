@@ -4,10 +4,10 @@
 #include <sstream>
 
 #include "mesh/BoundaryFaces.hpp"
-#include "mesh/CutCaps.hpp"
+#include "meshing/CutCaps.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "scene/SceneFields.hpp"
 #include "scene/SkinOutside.hpp"
 

@@ -12,9 +12,9 @@
 
 #include "mesh/BoundaryFaces.hpp"
 #include "mesh/SurfaceCheck.hpp"
-#include "mesh/SurfaceImport.hpp"
-#include "mesh/SurfaceRules.hpp"
-#include "mesh/TetgenIO.hpp"
+#include "io/SurfaceImport.hpp"
+#include "meshing/SurfaceRules.hpp"
+#include "io/TetgenIO.hpp"
 #include "scene/BoneContact.hpp"
 #include "scene/SceneFields.hpp"
 #include "scene/SurfaceTissue.hpp"
@@ -72,7 +72,7 @@ std::vector<int> boundaryNodes(const TetMesh& mesh) {
   return out;
 }
 
-// A surface of the case, checked; skin and bones by the rule import applied (mesh/SurfaceRules), so
+// A surface of the case, checked; skin and bones by the rule import applied (meshing/SurfaceRules), so
 // that what import accepted is accepted here, repaired the same way if it was written unrepaired.
 SurfaceMesh readSurface(const CaseSpec& spec, const std::string& path, const std::string& field,
                         const std::variant<SurfaceRequirement, SurfaceRole>& rule, CaseTissue& t,

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "math/Angles.hpp"
-#include "mesh/SweepSurface.hpp"
+#include "meshing/SweepSurface.hpp"
 
 namespace orthosim {
 namespace {

@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "mesh/SurfaceCheck.hpp"
-#include "mesh/SurfaceImport.hpp"
-#include "mesh/TetgenIO.hpp"
+#include "io/SurfaceImport.hpp"
+#include "io/TetgenIO.hpp"
 #include "scene/SceneFields.hpp"
 
 namespace orthosim {

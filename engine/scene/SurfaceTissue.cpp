@@ -9,21 +9,21 @@
 #include <tuple>
 
 #include "mesh/BoundaryFaces.hpp"
-#include "mesh/CavityPoints.hpp"
-#include "mesh/InterfaceSlivers.hpp"
-#include "mesh/LongEdgeSplit.hpp"
+#include "meshing/CavityPoints.hpp"
+#include "meshing/InterfaceSlivers.hpp"
+#include "meshing/LongEdgeSplit.hpp"
 #include "mesh/MeshQuality.hpp"
-#include "mesh/SurfaceCleanup.hpp"
+#include "meshing/SurfaceCleanup.hpp"
 #include "mesh/SurfaceDistance.hpp"
-#include "mesh/Tetrahedralize.hpp"
-#include "mesh/TissueBoolean.hpp"
+#include "meshing/Tetrahedralize.hpp"
+#include "meshing/TissueBoolean.hpp"
 
 namespace orthosim {
 namespace {
 
 // No boundary edge longer than this many times the skin's target edge at its place: flat patches
 // (the mouth slit's walls) otherwise keep a few triangles tens of mm long, whose tetrahedra
-// cannot bend (mesh/LongEdgeSplit).
+// cannot bend (meshing/LongEdgeSplit).
 constexpr double kMaxEdgeFactor = 3.0;
 
 using Clock = std::chrono::steady_clock;
@@ -129,7 +129,7 @@ EdgeSizing freeSurfaceSizing(const SurfaceTissueInput& in, const SimplifyReport&
 }
 
 // Flat tetrahedra with all four nodes on one of `sets` removed by a free node each
-// (mesh/InterfaceSlivers.hpp), in up to three rounds (a cavity that could not be emptied may be
+// (meshing/InterfaceSlivers.hpp), in up to three rounds (a cavity that could not be emptied may be
 // after its neighbours were); the new nodes keep off every set in `keepOff`. Returns the report's
 // words.
 std::string splitFlatTets(TetMesh& mesh, const std::vector<std::vector<int>>& sets,

@@ -8,7 +8,7 @@
 
 #include "mesh/LabelledSurface.hpp"
 #include "mesh/SurfaceMesh.hpp"
-#include "mesh/SurfaceSimplify.hpp"
+#include "meshing/SurfaceSimplify.hpp"
 #include "mesh/TetMesh.hpp"
 
 namespace orthosim {
@@ -34,7 +34,7 @@ struct SurfaceTissueInput {
   // Indices into `solids` of the bones (the rest are air): their interfaces move rigidly, so their
   // long edges are not split, and their nodes follow the bone (blended near a cut), so a
   // tetrahedron whose four nodes lie on one of them and whose smallest dihedral angle is below
-  // flatBoneDihedralDeg is replaced by tetrahedra joined to a new free node (mesh/InterfaceSlivers.hpp).
+  // flatBoneDihedralDeg is replaced by tetrahedra joined to a new free node (meshing/InterfaceSlivers.hpp).
   std::vector<int> bones;
   double flatBoneDihedralDeg = 5;
   // The same below this angle for four nodes on the skin or on one air cavity (free nodes).

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "mesh/AtomicFile.hpp"
+#include "system/AtomicFile.hpp"
 
 namespace orthosim {
 namespace {

@@ -9,7 +9,7 @@
 
 namespace orthosim {
 
-// Throws AtomicFileError (mesh/AtomicFile) when the file cannot be written, its temporary file removed.
+// Throws AtomicFileError (system/AtomicFile) when the file cannot be written, its temporary file removed.
 void writeTissueCache(const std::string& path, const CaseTissue& tissue);
 std::optional<CaseTissue> readTissueCache(const std::string& path);
 

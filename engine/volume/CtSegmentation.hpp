@@ -6,13 +6,13 @@
 // is taken from the histogram (two-class Otsu on the tissue's voxels).
 //
 // The work is done on a copy resampled to `voxelMm` (block averages, which also quiets noise); the
-// result is a label map in the scan's LPS frame for mesh/LabelMapSurfaces.
+// result is a label map in the scan's LPS frame for io/LabelMapSurfaces.
 #include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "mesh/LabelMapSurfaces.hpp"
+#include "io/LabelMapSurfaces.hpp"
 #include "volume/CtVolume.hpp"
 
 namespace orthosim {

@@ -2,7 +2,7 @@
 // A CT or cone-beam CT volume as read from a DICOM series: grey values per voxel (Hounsfield units
 // for CT once the series' rescale slope and intercept are applied; uncalibrated for most CBCT) and
 // their placement in the patient frame of DICOM, LPS millimetres (+x the patient's left, +y
-// posterior, +z superior), the frame of mesh/LabelMapSurfaces.
+// posterior, +z superior), the frame of io/LabelMapSurfaces.
 #include <Eigen/Core>
 #include <string>
 #include <vector>

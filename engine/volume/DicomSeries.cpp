@@ -33,7 +33,7 @@
 #include <mutex>
 #include <sstream>
 
-#include "mesh/VtkMessages.hpp"
+#include "io/VtkMessages.hpp"
 
 namespace orthosim {
 namespace {

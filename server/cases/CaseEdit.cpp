@@ -6,7 +6,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "mesh/AtomicFile.hpp"
+#include "system/AtomicFile.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/CaseImport.hpp"
 #include "scene/LandmarkFrame.hpp"

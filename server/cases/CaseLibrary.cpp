@@ -10,8 +10,8 @@
 #include <stdexcept>
 
 #include "eval/RealFace.hpp"
-#include "mesh/AtomicFile.hpp"
-#include "mesh/TemporaryName.hpp"
+#include "system/AtomicFile.hpp"
+#include "system/TemporaryName.hpp"
 #include "phantom/PhantomCase.hpp"
 
 namespace orthosim::server {

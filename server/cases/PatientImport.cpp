@@ -10,7 +10,7 @@
 
 #include "cases/Identifier.hpp"
 #include "cases/ScanFiles.hpp"
-#include "mesh/TemporaryName.hpp"
+#include "system/TemporaryName.hpp"
 #include "render/CaseView.hpp"
 #include "scene/CaseFile.hpp"
 

@@ -9,8 +9,8 @@
 
 #include "cli/Commands.hpp"
 #include "eval/PredictionBandJson.hpp"
-#include "mesh/AtomicFile.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "system/AtomicFile.hpp"
+#include "io/SurfaceImport.hpp"
 #include "scene/PlanFile.hpp"
 
 namespace orthosim::cli {

@@ -7,7 +7,7 @@
 
 #include "cli/Commands.hpp"
 #include "eval/Statistics.hpp"
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "scene/BlockScene.hpp"
 #include "solver/PlanSolver.hpp"
 

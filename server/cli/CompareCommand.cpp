@@ -8,7 +8,7 @@
 
 #include "cli/Commands.hpp"
 #include "eval/Comparison.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "render/ClinicalView.hpp"
 #include "render/ColorScale.hpp"
 #include "render/ImageFile.hpp"

@@ -6,8 +6,8 @@
 
 #include "cli/Commands.hpp"
 #include "math/Angles.hpp"
-#include "mesh/AtomicFile.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "system/AtomicFile.hpp"
+#include "io/SurfaceImport.hpp"
 #include "planning/FaceRequestJson.hpp"
 #include "scene/CaseModel.hpp"
 #include "scene/SceneFile.hpp"

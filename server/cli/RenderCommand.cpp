@@ -4,7 +4,7 @@
 #include <iostream>
 
 #include "cli/Commands.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "render/CaseView.hpp"
 #include "render/ClinicalView.hpp"
 #include "render/ImageFile.hpp"

@@ -3,9 +3,9 @@
 
 #include "cli/Commands.hpp"
 #include "eval/ResultJson.hpp"
-#include "mesh/AtomicFile.hpp"
-#include "mesh/SurfaceImport.hpp"
-#include "mesh/TetgenIO.hpp"
+#include "system/AtomicFile.hpp"
+#include "io/SurfaceImport.hpp"
+#include "io/TetgenIO.hpp"
 #include "scene/CaseModel.hpp"
 #include "scene/SceneFile.hpp"
 #include "solver/PinchedTissue.hpp"

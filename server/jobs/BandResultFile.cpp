@@ -6,7 +6,7 @@
 
 #include "eval/PredictionBandJson.hpp"
 #include "jobs/ArrayJson.hpp"
-#include "mesh/AtomicFile.hpp"
+#include "system/AtomicFile.hpp"
 
 namespace orthosim::server {
 using nlohmann::json;

@@ -30,7 +30,7 @@ struct BandOutcome {
 BandOutcome bandOutcome(const PredictionBand& band, double seconds);
 
 std::string bandResultFileName(const std::string& job);  // relative to the data folder: jobs/<job>.band.json
-// Written to a temporary name and renamed (mesh/AtomicFile). Throws std::runtime_error.
+// Written to a temporary name and renamed (system/AtomicFile). Throws std::runtime_error.
 void writeBandResult(const std::filesystem::path& file, const BandOutcome& outcome);
 // Throws BadResultFile (jobs/ArrayJson) naming the file and the defect: missing, not JSON, another
 // format, a missing field, a non-finite number, an envelope whose arrays do not match its skin.

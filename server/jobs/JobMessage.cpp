@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "cases/Identifier.hpp"
-#include "mesh/AtomicFile.hpp"
+#include "system/AtomicFile.hpp"
 
 namespace orthosim::server {
 using nlohmann::json;

@@ -11,7 +11,7 @@
 #include "jobs/CohortWorkerJob.hpp"
 #include "jobs/FineJob.hpp"
 #include "jobs/JobStream.hpp"
-#include "mesh/TemporaryName.hpp"
+#include "system/TemporaryName.hpp"
 
 namespace orthosim::server {
 using nlohmann::json;

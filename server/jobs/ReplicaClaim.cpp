@@ -4,7 +4,7 @@
 
 #include <thread>
 
-#include "mesh/TemporaryName.hpp"
+#include "system/TemporaryName.hpp"
 #include "util/RandomId.hpp"
 
 namespace orthosim::server {

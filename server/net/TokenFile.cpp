@@ -8,7 +8,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "mesh/TemporaryName.hpp"
+#include "system/TemporaryName.hpp"
 #include "util/RandomId.hpp"
 
 namespace orthosim::net {

@@ -1,6 +1,6 @@
 #include "net/UploadBody.hpp"
 
-#include "mesh/TemporaryName.hpp"
+#include "system/TemporaryName.hpp"
 
 namespace orthosim::net {
 

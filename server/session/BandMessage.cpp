@@ -8,7 +8,7 @@
 #include "eval/PredictionBandJson.hpp"
 #include "jobs/BandJob.hpp"
 #include "jobs/BandResultFile.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "session/PlanningSession.hpp"
 #include "session/SkinExport.hpp"
 

@@ -5,7 +5,7 @@
 #include <optional>
 #include <string_view>
 
-#include "mesh/TemporaryName.hpp"
+#include "system/TemporaryName.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;

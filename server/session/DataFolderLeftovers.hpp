@@ -1,6 +1,6 @@
 #pragma once
 // What an interrupted writer leaves in its data folder. Every write there goes through a temporary
-// name carrying mesh/TemporaryName's suffix (HOST-PID-RANDOM), which names its writer:
+// name carrying system/TemporaryName's suffix (HOST-PID-RANDOM), which names its writer:
 //   cases/<id>.writing-<suffix>/ and cases/<id>/case.json.writing-<suffix>   built cases
 //   patients/.<id>.importing-<suffix>/, patients/<id>/.case.json.editing-<suffix>   imports, edits
 //   imports/<id>.upload-<suffix>/ and the rest of imports/ (uploads and scans staged for an import)

@@ -11,7 +11,7 @@
 #include <string>
 #include <thread>
 
-#include "mesh/TemporaryName.hpp"
+#include "system/TemporaryName.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;

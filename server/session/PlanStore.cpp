@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "cases/Identifier.hpp"
-#include "mesh/AtomicFile.hpp"
+#include "system/AtomicFile.hpp"
 #include "session/ProtocolError.hpp"
 
 namespace orthosim::server {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "session/ProtocolError.hpp"
 
 namespace orthosim::server {

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "mesh/TetgenIO.hpp"
+#include "io/TetgenIO.hpp"
 
 namespace fs = std::filesystem;
 

@@ -9,7 +9,7 @@
 #include "Square.hpp"
 #include "contact/ContactEnergy.hpp"
 #include "contact/SmoothPenalty.hpp"
-#include "mesh/SurfacePrimitives.hpp"
+#include "meshing/SurfacePrimitives.hpp"
 
 namespace orthosim {
 namespace {

@@ -7,8 +7,8 @@
 
 #include "CubeOnRollers.hpp"
 #include "Square.hpp"
-#include "mesh/BoxMesh.hpp"
-#include "mesh/SurfacePrimitives.hpp"
+#include "meshing/BoxMesh.hpp"
+#include "meshing/SurfacePrimitives.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim {

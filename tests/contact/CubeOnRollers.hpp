@@ -4,7 +4,7 @@
 // tissue the contact tests press a rigid plate onto.
 #include <vector>
 
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "scene/Scene.hpp"
 
 namespace orthosim::test {

@@ -1,4 +1,4 @@
-// Caps on the openings a cut leaves in a fragment's part of a bone surface (mesh/CutCaps): the
+// Caps on the openings a cut leaves in a fragment's part of a bone surface (meshing/CutCaps): the
 // capped part is closed, its signed distance is exact next to the cut and continuous round the
 // rim (where the open part's jumps), a border the bone itself has stays open, and the contact
 // energy's derivatives hold next to a cap.
@@ -8,8 +8,8 @@
 
 #include "contact/ContactEnergy.hpp"
 #include "math/Angles.hpp"
-#include "mesh/CutCaps.hpp"
-#include "mesh/SurfacePrimitives.hpp"
+#include "meshing/CutCaps.hpp"
+#include "meshing/SurfacePrimitives.hpp"
 
 namespace orthosim {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "eval/CohortJson.hpp"
 #include "math/Angles.hpp"
-#include "mesh/SurfacePrimitives.hpp"
+#include "meshing/SurfacePrimitives.hpp"
 
 namespace orthosim {
 namespace {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "eval/Comparison.hpp"
-#include "mesh/SurfacePrimitives.hpp"
+#include "meshing/SurfacePrimitives.hpp"
 
 namespace orthosim {
 namespace {

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "eval/SkinEnvelope.hpp"
-#include "mesh/SurfacePrimitives.hpp"
+#include "meshing/SurfacePrimitives.hpp"
 
 namespace orthosim {
 namespace {

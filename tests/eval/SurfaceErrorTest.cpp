@@ -9,7 +9,7 @@
 #include "eval/ErrorSummary.hpp"
 #include "eval/SurfaceError.hpp"
 #include "eval/VertexAreas.hpp"
-#include "mesh/SurfacePrimitives.hpp"
+#include "meshing/SurfacePrimitives.hpp"
 
 namespace orthosim {
 namespace {

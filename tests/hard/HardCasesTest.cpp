@@ -353,7 +353,7 @@ TEST_F(HardPhantom, SegmentedMaxillaMovedSixMillimetresApart) {
   const HardRun run = solve("segmented maxilla, 6 mm apart (phantom, contact)", scene,
                             {{"maxilla_left", left}, {"maxilla_right", right}});
   expectConvergedWithin(run.result, 12);  // today 6 iterations in 1 substep
-  // The fragments' contact surfaces are closed at their cuts (mesh/CutCaps): no node ends inside
+  // The fragments' contact surfaces are closed at their cuts (meshing/CutCaps): no node ends inside
   // one beyond the penalty's give, at most half an element (today 0.13 mm here; 0.72 mm in the
   // setbacks, where the tissue the mandible drags back presses on the front of the right ramus).
   EXPECT_LT(run.deepestContact, 1.0);

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "TestData.hpp"
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "mesh/PointEmbedding.hpp"
-#include "mesh/TetgenIO.hpp"
+#include "io/TetgenIO.hpp"
 
 namespace orthosim {
 namespace {

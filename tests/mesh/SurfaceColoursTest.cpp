@@ -6,8 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "mesh/SurfaceImport.hpp"
-#include "mesh/SurfacePrimitives.hpp"
+#include "io/SurfaceImport.hpp"
+#include "meshing/SurfacePrimitives.hpp"
 
 namespace orthosim {
 namespace {

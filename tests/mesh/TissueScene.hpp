@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "mesh/SurfaceMesh.hpp"
-#include "mesh/SurfacePrimitives.hpp"
+#include "meshing/SurfacePrimitives.hpp"
 
 namespace orthosim::test {
 

@@ -20,7 +20,7 @@
 #include "mesh/SelfIntersection.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "phantom/Phantom.hpp"
 #include "phantom/PhantomDesign.hpp"
 #include "phantom/PhantomSkull.hpp"

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "physics/NeoHookean.hpp"
 #include "physics/SoftTissueEnergy.hpp"
 

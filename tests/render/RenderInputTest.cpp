@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "mesh/SurfacePrimitives.hpp"
+#include "meshing/SurfacePrimitives.hpp"
 #include "render/ClinicalView.hpp"
 #include "render/ColorScale.hpp"
 #include "render/ImageFile.hpp"

@@ -30,17 +30,18 @@ allowed() {
     return
   fi
   case $1 in
-    math | image) echo "" ;;
+    math | image | system) echo "" ;;
     mesh) echo "math" ;;
+    meshing | io) echo "mesh math" ;;
     physics) echo "mesh math" ;;
-    volume) echo "mesh math" ;;
-    scene) echo "mesh volume math" ;;
-    phantom) echo "mesh image volume math" ;;
+    volume) echo "mesh io math" ;;
+    scene) echo "mesh meshing io system volume math" ;;
+    phantom) echo "mesh meshing io system image volume math" ;;
     contact) echo "mesh scene math" ;;
     solver) echo "mesh physics scene contact math" ;;
-    eval) echo "mesh physics scene contact solver phantom math" ;;
+    eval) echo "mesh physics scene contact solver phantom system math" ;;
     planning) echo "mesh physics scene contact solver eval math" ;;
-    render) echo "mesh scene eval image math solver/SimState.hpp" ;;
+    render) echo "mesh io scene eval image math solver/SimState.hpp" ;;
     *) echo "?" ;;
   esac
 }

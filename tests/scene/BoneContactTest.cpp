@@ -12,11 +12,11 @@
 #include <stdexcept>
 
 #include "TestData.hpp"
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "mesh/SurfaceDistance.hpp"
-#include "mesh/SurfaceImport.hpp"
-#include "mesh/SurfacePrimitives.hpp"
-#include "mesh/TetgenIO.hpp"
+#include "io/SurfaceImport.hpp"
+#include "meshing/SurfacePrimitives.hpp"
+#include "io/TetgenIO.hpp"
 #include "scene/BoneContact.hpp"
 #include "scene/SceneFile.hpp"
 

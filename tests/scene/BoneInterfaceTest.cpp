@@ -4,7 +4,7 @@
 // a few tenths of a millimetre of blend turned them over, their free neighbours had to pass
 // through them, and cohort patient M9's fine solve took 23 substeps with tissue "crushed by the
 // plan" (min det F -1.44, a free node dragged 14 mm). They are now removed by a free node each
-// (mesh/InterfaceSlivers, scene/SurfaceTissue).
+// (meshing/InterfaceSlivers, scene/SurfaceTissue).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -38,7 +38,7 @@ TEST(BoneInterface, VariantThreeFineKeepsFewFlatTetsOnOneBoneAndM9SolvesInOneSub
   // Tetrahedra whose four nodes lie on one bone and which are flatter than 5 degrees: TetGen leaves
   // about 75 (down to 0.21 deg); the removal must take out at least four in five, and the mesh must
   // hold what its report says is left. On its own branch it left 3 (4.5-4.9 deg); since the skin
-  // and cavity edges are split as well (mesh/LongEdgeSplit) TetGen returns a degenerate element
+  // and cavity edges are split as well (meshing/LongEdgeSplit) TetGen returns a degenerate element
   // under the bolder clean-up, the milder one is used, and 11 are left, down to 0.21 deg: open.
   int flat = 0, onOneBone = 0;
   double worst = 180;

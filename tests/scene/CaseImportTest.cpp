@@ -17,7 +17,7 @@
 #include "PhantomImportInput.hpp"
 #include "RunCli.hpp"
 #include "SameLeFortI.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseImport.hpp"
 #include "scene/CaseModel.hpp"

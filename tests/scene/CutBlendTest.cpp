@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "scene/BlockScene.hpp"
 #include "scene/CutBlend.hpp"
 #include "solver/PlanSolver.hpp"

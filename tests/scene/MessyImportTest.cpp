@@ -1,4 +1,4 @@
-// Import and solve apply one rule to skin and bones (mesh/SurfaceRules): a skin with a ragged neck,
+// Import and solve apply one rule to skin and bones (meshing/SurfaceRules): a skin with a ragged neck,
 // open eyes, a fold and a crumb, and a cropped skull crossing itself, are repaired at import, and the
 // case they make meshes without further repair; a skin import refuses is refused at solve for the
 // same reason.
@@ -11,7 +11,7 @@
 #include "ImportRefusal.hpp"
 #include "PhantomImportInput.hpp"
 #include "RaggedSurfaces.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseImport.hpp"
 #include "scene/CaseModel.hpp"

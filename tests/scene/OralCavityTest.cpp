@@ -16,7 +16,7 @@
 #include "eval/SkinPoint.hpp"
 #include "mesh/PointsInside.hpp"
 #include "mesh/SurfaceDistance.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseImport.hpp"
 #include "scene/CaseModel.hpp"

@@ -13,7 +13,7 @@
 #include "eval/LandmarkError.hpp"
 #include "math/Angles.hpp"
 #include "mesh/SurfaceDistance.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseModel.hpp"
 #include "solver/LinearResponse.hpp"
@@ -326,7 +326,7 @@ TEST_F(PhantomCase, TheFaceDoesNotDependOnYoungsModulus) {
 
 // On a 10 mm setback with the lips-teeth contact, the coarse preview puts the
 // lower and upper lip and the soft chin within 1 mm of the fine confirm. Before the mouth slit's
-// flat walls were split into short edges (mesh/LongEdgeSplit) the fine mesh kept them as a few
+// flat walls were split into short edges (meshing/LongEdgeSplit) the fine mesh kept them as a few
 // triangles up to 46 mm long, which stiffened the lips: the fine lower lip followed the chin 0.70
 // where the coarse one (and finer, split meshes) follow 0.9, and the two were 2.3 mm apart.
 TEST_F(PhantomCase, CoarseSetbackPutsLipsAndChinWithinOneMillimetreOfTheFine) {

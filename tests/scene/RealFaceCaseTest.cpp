@@ -16,7 +16,7 @@
 #include "TestData.hpp"
 #include "eval/RealFace.hpp"
 #include "mesh/SurfaceDistance.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "scene/CaseModel.hpp"
 #include "scene/SceneFields.hpp"
 #include "solver/PlanSolver.hpp"

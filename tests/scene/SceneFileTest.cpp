@@ -16,10 +16,10 @@
 #include <string>
 
 #include "math/Angles.hpp"
-#include "mesh/BoxMesh.hpp"
-#include "mesh/SurfaceImport.hpp"
-#include "mesh/SurfacePrimitives.hpp"
-#include "mesh/TetgenIO.hpp"
+#include "meshing/BoxMesh.hpp"
+#include "io/SurfaceImport.hpp"
+#include "meshing/SurfacePrimitives.hpp"
+#include "io/TetgenIO.hpp"
 #include "scene/RigidPose.hpp"
 #include "scene/SceneFile.hpp"
 #include "solver/Model.hpp"

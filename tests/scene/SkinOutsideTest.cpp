@@ -8,7 +8,7 @@
 #include <iostream>
 
 #include "mesh/BoundaryFaces.hpp"
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "mesh/PointEmbedding.hpp"
 #include "scene/SkinOutside.hpp"
 

@@ -10,7 +10,7 @@
 #include <iostream>
 #include <set>
 
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/SuggestedLandmarks.hpp"

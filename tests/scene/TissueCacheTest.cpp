@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "mesh/MeshQuality.hpp"
 #include "scene/TissueCache.hpp"
 

@@ -11,7 +11,7 @@
 #include <fstream>
 
 #include "ServerProcess.hpp"
-#include "mesh/TemporaryName.hpp"
+#include "system/TemporaryName.hpp"
 #include "session/DataFolderLeftovers.hpp"
 
 namespace orthosim {

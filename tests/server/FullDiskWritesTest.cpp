@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "cases/CaseEdit.hpp"
-#include "mesh/AtomicFile.hpp"
-#include "mesh/BoxMesh.hpp"
+#include "system/AtomicFile.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/TissueCache.hpp"

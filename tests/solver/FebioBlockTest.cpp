@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "TestData.hpp"
-#include "mesh/TetgenIO.hpp"
+#include "io/TetgenIO.hpp"
 
 namespace fs = std::filesystem;
 

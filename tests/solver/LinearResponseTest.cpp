@@ -10,7 +10,7 @@
 #include "../contact/CubeOnRollers.hpp"
 #include "../contact/Square.hpp"
 #include "math/Angles.hpp"
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "scene/BlockScene.hpp"
 #include "solver/LinearResponse.hpp"
 #include "solver/PlanSolver.hpp"

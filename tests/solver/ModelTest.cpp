@@ -6,7 +6,7 @@
 
 #include "../contact/CubeOnRollers.hpp"
 #include "../contact/Square.hpp"
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "scene/BlockScene.hpp"
 #include "solver/Model.hpp"
 #include "solver/PlanSolver.hpp"

@@ -2,7 +2,7 @@
 // solve reports the crushed tissue between them (engine/solver/PinchedTissue), naming both.
 #include <gtest/gtest.h>
 
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "solver/PinchedTissue.hpp"
 #include "solver/PlanSolver.hpp"
 

@@ -8,7 +8,7 @@
 #include <atomic>
 
 #include "math/Angles.hpp"
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "scene/BlockScene.hpp"
 #include "solver/PlanSolver.hpp"
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "solver/Model.hpp"
 
 namespace orthosim {

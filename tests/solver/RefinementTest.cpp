@@ -3,7 +3,7 @@
 // (linear tetrahedra are too stiff on coarse meshes and soften monotonically).
 #include <gtest/gtest.h>
 
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim {

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "mesh/BoxMesh.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim {

@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <iostream>
 
-#include "mesh/LabelMapSurfaces.hpp"
+#include "io/LabelMapSurfaces.hpp"
 #include "mesh/SurfaceDistance.hpp"
-#include "mesh/SurfacePrimitives.hpp"
+#include "meshing/SurfacePrimitives.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "phantom/PhantomCt.hpp"
 #include "volume/CtSegmentation.hpp"

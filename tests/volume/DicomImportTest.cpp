@@ -13,7 +13,7 @@
 #include "SkinMoves.hpp"
 #include "contact/RigidSurface.hpp"
 #include "eval/SkinPoint.hpp"
-#include "mesh/SurfaceImport.hpp"
+#include "io/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "phantom/PhantomCt.hpp"
 #include "scene/CaseImport.hpp"
