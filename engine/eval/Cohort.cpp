@@ -4,9 +4,9 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "system/AtomicFile.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseFile.hpp"
+#include "system/AtomicFile.hpp"
 
 namespace orthosim {
 namespace {

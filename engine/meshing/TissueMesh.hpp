@@ -9,8 +9,8 @@
 
 #include "mesh/MeshQuality.hpp"
 #include "mesh/SurfaceMesh.hpp"
-#include "meshing/SurfaceSimplify.hpp"
 #include "mesh/TetMesh.hpp"
+#include "meshing/SurfaceSimplify.hpp"
 #include "meshing/Tetrahedralize.hpp"
 
 namespace orthosim {

@@ -3,11 +3,11 @@
 #include <set>
 #include <sstream>
 
+#include "io/SurfaceImport.hpp"
 #include "mesh/BoundaryFaces.hpp"
-#include "meshing/CutCaps.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
-#include "io/SurfaceImport.hpp"
+#include "meshing/CutCaps.hpp"
 #include "scene/SceneFields.hpp"
 #include "scene/SkinOutside.hpp"
 

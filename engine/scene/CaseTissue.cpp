@@ -10,11 +10,11 @@
 #include <sstream>
 #include <variant>
 
+#include "io/SurfaceImport.hpp"
+#include "io/TetgenIO.hpp"
 #include "mesh/BoundaryFaces.hpp"
 #include "mesh/SurfaceCheck.hpp"
-#include "io/SurfaceImport.hpp"
 #include "meshing/SurfaceRules.hpp"
-#include "io/TetgenIO.hpp"
 #include "scene/BoneContact.hpp"
 #include "scene/SceneFields.hpp"
 #include "scene/SurfaceTissue.hpp"

@@ -7,9 +7,9 @@
 #include <set>
 #include <sstream>
 
-#include "mesh/SurfaceCheck.hpp"
 #include "io/SurfaceImport.hpp"
 #include "io/TetgenIO.hpp"
+#include "mesh/SurfaceCheck.hpp"
 #include "scene/SceneFields.hpp"
 
 namespace orthosim {

@@ -9,12 +9,12 @@
 #include <tuple>
 
 #include "mesh/BoundaryFaces.hpp"
+#include "mesh/MeshQuality.hpp"
+#include "mesh/SurfaceDistance.hpp"
 #include "meshing/CavityPoints.hpp"
 #include "meshing/InterfaceSlivers.hpp"
 #include "meshing/LongEdgeSplit.hpp"
-#include "mesh/MeshQuality.hpp"
 #include "meshing/SurfaceCleanup.hpp"
-#include "mesh/SurfaceDistance.hpp"
 #include "meshing/Tetrahedralize.hpp"
 #include "meshing/TissueBoolean.hpp"
 

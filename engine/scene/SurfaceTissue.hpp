@@ -8,8 +8,8 @@
 
 #include "mesh/LabelledSurface.hpp"
 #include "mesh/SurfaceMesh.hpp"
-#include "meshing/SurfaceSimplify.hpp"
 #include "mesh/TetMesh.hpp"
+#include "meshing/SurfaceSimplify.hpp"
 
 namespace orthosim {
 

@@ -6,10 +6,10 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "system/AtomicFile.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/CaseImport.hpp"
 #include "scene/LandmarkFrame.hpp"
+#include "system/AtomicFile.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;

@@ -10,9 +10,9 @@
 #include <stdexcept>
 
 #include "eval/RealFace.hpp"
+#include "phantom/PhantomCase.hpp"
 #include "system/AtomicFile.hpp"
 #include "system/TemporaryName.hpp"
-#include "phantom/PhantomCase.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;

@@ -9,9 +9,9 @@
 
 #include "cli/Commands.hpp"
 #include "eval/PredictionBandJson.hpp"
-#include "system/AtomicFile.hpp"
 #include "io/SurfaceImport.hpp"
 #include "scene/PlanFile.hpp"
+#include "system/AtomicFile.hpp"
 
 namespace orthosim::cli {
 namespace fs = std::filesystem;

@@ -5,12 +5,12 @@
 #include <iostream>
 
 #include "cli/Commands.hpp"
-#include "math/Angles.hpp"
-#include "system/AtomicFile.hpp"
 #include "io/SurfaceImport.hpp"
+#include "math/Angles.hpp"
 #include "planning/FaceRequestJson.hpp"
 #include "scene/CaseModel.hpp"
 #include "scene/SceneFile.hpp"
+#include "system/AtomicFile.hpp"
 
 namespace orthosim::cli {
 namespace fs = std::filesystem;

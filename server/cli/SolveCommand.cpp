@@ -3,13 +3,13 @@
 
 #include "cli/Commands.hpp"
 #include "eval/ResultJson.hpp"
-#include "system/AtomicFile.hpp"
 #include "io/SurfaceImport.hpp"
 #include "io/TetgenIO.hpp"
 #include "scene/CaseModel.hpp"
 #include "scene/SceneFile.hpp"
 #include "solver/PinchedTissue.hpp"
 #include "solver/PlanSolver.hpp"
+#include "system/AtomicFile.hpp"
 
 namespace orthosim::cli {
 namespace fs = std::filesystem;

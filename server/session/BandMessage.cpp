@@ -6,9 +6,9 @@
 #include <chrono>
 
 #include "eval/PredictionBandJson.hpp"
+#include "io/SurfaceImport.hpp"
 #include "jobs/BandJob.hpp"
 #include "jobs/BandResultFile.hpp"
-#include "io/SurfaceImport.hpp"
 #include "session/PlanningSession.hpp"
 #include "session/SkinExport.hpp"
 

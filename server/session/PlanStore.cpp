@@ -12,8 +12,8 @@
 #include <sstream>
 
 #include "cases/Identifier.hpp"
-#include "system/AtomicFile.hpp"
 #include "session/ProtocolError.hpp"
+#include "system/AtomicFile.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;

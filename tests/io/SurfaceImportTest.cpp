@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "io/SurfaceImport.hpp"
 #include "math/Angles.hpp"
 #include "mesh/SurfaceCheck.hpp"
-#include "io/SurfaceImport.hpp"
 #include "mesh/SurfaceMesh.hpp"
 #include "meshing/SurfacePrimitives.hpp"
 

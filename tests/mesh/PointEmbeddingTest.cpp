@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "TestData.hpp"
-#include "meshing/BoxMesh.hpp"
-#include "mesh/PointEmbedding.hpp"
 #include "io/TetgenIO.hpp"
+#include "mesh/PointEmbedding.hpp"
+#include "meshing/BoxMesh.hpp"
 
 namespace orthosim {
 namespace {

@@ -8,8 +8,8 @@
 #include <set>
 
 #include "mesh/BoundaryFaces.hpp"
-#include "meshing/InterfaceSlivers.hpp"
 #include "mesh/MeshQuality.hpp"
+#include "meshing/InterfaceSlivers.hpp"
 
 namespace orthosim {
 namespace {

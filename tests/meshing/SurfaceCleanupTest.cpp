@@ -5,8 +5,8 @@
 
 #include "TissueScene.hpp"
 #include "mesh/SurfaceCheck.hpp"
-#include "meshing/SurfaceCleanup.hpp"
 #include "mesh/SurfaceDistance.hpp"
+#include "meshing/SurfaceCleanup.hpp"
 #include "meshing/SurfacePrimitives.hpp"
 #include "meshing/SurfaceSimplify.hpp"
 #include "meshing/TissueBoolean.hpp"

@@ -18,12 +18,12 @@
 #include <vector>
 
 #include "TestData.hpp"
+#include "io/TetgenIO.hpp"
 #include "math/Angles.hpp"
 #include "mesh/BoundaryFaces.hpp"
-#include "meshing/BoxMesh.hpp"
 #include "mesh/MeshQuality.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "meshing/SurfacePrimitives.hpp"
-#include "io/TetgenIO.hpp"
 #include "meshing/Tetrahedralize.hpp"
 
 namespace orthosim {

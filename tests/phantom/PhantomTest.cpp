@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "io/SurfaceImport.hpp"
 #include "math/Angles.hpp"
 #include "mesh/SelfIntersection.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
-#include "io/SurfaceImport.hpp"
 #include "phantom/Phantom.hpp"
 #include "phantom/PhantomDesign.hpp"
 #include "phantom/PhantomSkull.hpp"

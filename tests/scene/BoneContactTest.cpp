@@ -12,11 +12,11 @@
 #include <stdexcept>
 
 #include "TestData.hpp"
-#include "meshing/BoxMesh.hpp"
-#include "mesh/SurfaceDistance.hpp"
 #include "io/SurfaceImport.hpp"
-#include "meshing/SurfacePrimitives.hpp"
 #include "io/TetgenIO.hpp"
+#include "mesh/SurfaceDistance.hpp"
+#include "meshing/BoxMesh.hpp"
+#include "meshing/SurfacePrimitives.hpp"
 #include "scene/BoneContact.hpp"
 #include "scene/SceneFile.hpp"
 

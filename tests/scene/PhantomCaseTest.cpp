@@ -11,9 +11,9 @@
 
 #include "contact/RigidSurface.hpp"
 #include "eval/LandmarkError.hpp"
+#include "io/SurfaceImport.hpp"
 #include "math/Angles.hpp"
 #include "mesh/SurfaceDistance.hpp"
-#include "io/SurfaceImport.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseModel.hpp"
 #include "solver/LinearResponse.hpp"

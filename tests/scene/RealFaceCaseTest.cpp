@@ -15,8 +15,8 @@
 
 #include "TestData.hpp"
 #include "eval/RealFace.hpp"
-#include "mesh/SurfaceDistance.hpp"
 #include "io/SurfaceImport.hpp"
+#include "mesh/SurfaceDistance.hpp"
 #include "scene/CaseModel.hpp"
 #include "scene/SceneFields.hpp"
 #include "solver/PlanSolver.hpp"

@@ -15,11 +15,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "io/SurfaceImport.hpp"
+#include "io/TetgenIO.hpp"
 #include "math/Angles.hpp"
 #include "meshing/BoxMesh.hpp"
-#include "io/SurfaceImport.hpp"
 #include "meshing/SurfacePrimitives.hpp"
-#include "io/TetgenIO.hpp"
 #include "scene/RigidPose.hpp"
 #include "scene/SceneFile.hpp"
 #include "solver/Model.hpp"

@@ -8,8 +8,8 @@
 #include <iostream>
 
 #include "mesh/BoundaryFaces.hpp"
-#include "meshing/BoxMesh.hpp"
 #include "mesh/PointEmbedding.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "scene/SkinOutside.hpp"
 
 namespace orthosim {

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "meshing/BoxMesh.hpp"
 #include "mesh/MeshQuality.hpp"
+#include "meshing/BoxMesh.hpp"
 #include "scene/TissueCache.hpp"
 
 namespace fs = std::filesystem;

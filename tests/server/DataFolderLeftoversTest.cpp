@@ -11,8 +11,8 @@
 #include <fstream>
 
 #include "ServerProcess.hpp"
-#include "system/TemporaryName.hpp"
 #include "session/DataFolderLeftovers.hpp"
+#include "system/TemporaryName.hpp"
 
 namespace orthosim {
 namespace {

@@ -11,13 +11,13 @@
 #include <sstream>
 
 #include "cases/CaseEdit.hpp"
-#include "system/AtomicFile.hpp"
 #include "meshing/BoxMesh.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/TissueCache.hpp"
 #include "session/PlanStore.hpp"
 #include "session/ProtocolError.hpp"
+#include "system/AtomicFile.hpp"
 
 namespace orthosim::server {
 namespace {
