@@ -10,13 +10,12 @@
 #include <variant>
 
 #include "io/LabelMapSurfaces.hpp"
+#include "io/SurfaceImport.hpp"
 #include "mesh/PointsInside.hpp"
 #include "mesh/SurfaceCheck.hpp"
 #include "mesh/SurfaceDistance.hpp"
-#include "io/SurfaceImport.hpp"
 #include "mesh/SurfacePieces.hpp"
 #include "meshing/SurfaceRules.hpp"
-#include "system/TemporaryName.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/CaseModel.hpp"
 #include "scene/CaseTissue.hpp"
@@ -26,6 +25,8 @@
 #include "scene/OralCavity.hpp"
 #include "scene/Osteotomy.hpp"
 #include "scene/SuggestedLandmarks.hpp"
+#include "system/FolderInMessage.hpp"
+#include "system/TemporaryName.hpp"
 #include "volume/DicomSeries.hpp"
 
 namespace orthosim {
@@ -561,7 +562,7 @@ void checkOpens(const CaseImportInput& input, const std::string& caseFile, const
   if (!input.texture.empty())
     given.push_back({"texture" + fs::path(input.texture).extension().string(), input.texture});
   const auto named = [&](std::string message) {
-    for (std::size_t at; (at = message.find(folder)) != std::string::npos;) message.erase(at, folder.size());
+    message = withoutFolder(std::move(message), folder);
     for (const auto& [written, user] : given) {
       if (user.empty()) continue;
       for (std::size_t at = 0; (at = message.find(written, at)) != std::string::npos;) {

@@ -10,9 +10,10 @@
 
 #include "cases/Identifier.hpp"
 #include "cases/ScanFiles.hpp"
-#include "system/TemporaryName.hpp"
 #include "render/CaseView.hpp"
 #include "scene/CaseFile.hpp"
+#include "system/FolderInMessage.hpp"
+#include "system/TemporaryName.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;
@@ -174,14 +175,6 @@ struct StagingFolder {
 };
 
 }  // namespace
-
-// Messages of the engine's importer name files by their staged paths: show the user's names.
-std::string withoutFolder(std::string message, const std::string& folder, const std::string& with) {
-  if (folder.empty()) return message;
-  for (std::size_t at = 0; (at = message.find(folder, at)) != std::string::npos; at += with.size())
-    message.replace(at, folder.size(), with);
-  return message;
-}
 
 std::string chooseSeries(const fs::path& folder, const std::string& requested, std::vector<DicomSeriesInfo>* out) {
   std::vector<DicomSeriesInfo> series;

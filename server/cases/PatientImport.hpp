@@ -62,9 +62,6 @@ struct PatientImportError : std::runtime_error {
 std::string chooseSeries(const std::filesystem::path& folder, const std::string& requested,
                          std::vector<DicomSeriesInfo>* series = nullptr);
 
-// Replaces every `folder` in an engine's message (staged paths the user never saw) by `with`.
-std::string withoutFolder(std::string message, const std::string& folder, const std::string& with = "");
-
 // The fields a file may come in, and the file name endings each takes.
 bool isUploadField(const std::string& field);
 

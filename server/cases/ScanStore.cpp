@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "cases/ScanFiles.hpp"
+#include "system/FolderInMessage.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;

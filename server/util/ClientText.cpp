@@ -1,6 +1,7 @@
 #include "util/ClientText.hpp"
 
 #include <filesystem>
+#include <set>
 #include <string_view>
 
 namespace orthosim::server {
@@ -18,12 +19,24 @@ bool endsPath(char c) {
          c == '\t';
 }
 
+// The machine's top-level folders, read once: a reply is checked word by word, and asking the file
+// system for every slash-word of every reply would cost a system call each.
+const std::set<std::string, std::less<>>& topLevelFolders() {
+  static const std::set<std::string, std::less<>> folders = [] {
+    std::set<std::string, std::less<>> names;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator("/", ec))
+      if (entry.is_directory(ec)) names.insert(entry.path().filename().string());
+    return names;
+  }();
+  return folders;
+}
+
 // "/srv/data/x.json" -> true when /srv is a folder of this machine and the path has two parts or more.
 bool isMachinePath(std::string_view path) {
   const std::size_t second = path.find('/', 1);
   if (second == std::string_view::npos || second == 1 || second + 1 >= path.size()) return false;
-  std::error_code ec;
-  return std::filesystem::is_directory(std::filesystem::path(std::string(path.substr(0, second))), ec);
+  return topLevelFolders().count(path.substr(1, second - 1)) > 0;
 }
 
 std::string_view lastPart(std::string_view path) {
