@@ -60,6 +60,10 @@ void ContactEnergy::addGradient(const std::vector<ActiveContact>& contacts, Eige
   for (const ActiveContact& c : contacts) g.col(c.node) -= c.stiffness * c.penalty.slope(c.depth()) * c.normal;
 }
 
+void ContactEnergy::addHessian(const EnergyState& s, bool projectToPSD, HessianSink& out) const {
+  for (const ActiveContact& c : active(s.x, s.poses)) out.add(&c.node, 1, hessianBlock(c, projectToPSD));
+}
+
 Eigen::Matrix3d ContactEnergy::hessianBlock(const ActiveContact& c, bool projectToPSD) {
   // psi(s(x)) with s = -d: grad = -psi' u, Hessian = psi'' u u^T - psi' Hess d.
   const double s = c.depth();

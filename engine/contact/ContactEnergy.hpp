@@ -12,13 +12,15 @@
 // curvature term is negative outside a convex corner (the energy is not convex there), and the
 // reduced system must stay positive definite.
 // The contact set is found anew at every evaluation (energy, gradient, Hessian), so Newton's line
-// search sees contacts open and close.
+// search sees contacts open and close. As an energy term it does not restrict steps: a penalty
+// stays finite however deep a node goes.
 #include <Eigen/Core>
 #include <memory>
 #include <vector>
 
 #include "contact/RigidSurface.hpp"
 #include "contact/SmoothPenalty.hpp"
+#include "physics/EnergyTerm.hpp"
 #include "scene/RigidPose.hpp"
 
 namespace orthosim {
@@ -42,9 +44,14 @@ struct ActiveContact {
   double depth() const { return -distance; }  // s > 0
 };
 
-class ContactEnergy {
+class ContactEnergy : public EnergyTerm {
  public:
   explicit ContactEnergy(std::vector<ContactPair> pairs);
+
+  // The energy term at s: the contacts of s.x and s.poses, summed; each node's block for addHessian.
+  double value(const EnergyState& s) const override { return energy(active(s.x, s.poses)); }
+  void addGradient(const EnergyState& s, Eigen::Matrix3Xd& g) const override { addGradient(active(s.x, s.poses), g); }
+  void addHessian(const EnergyState& s, bool projectToPSD, HessianSink& out) const override;
 
   // Nodes below their surface at positions x with fragment poses `poses`. Not thread-safe (it keeps the memo that saves
   // queries).

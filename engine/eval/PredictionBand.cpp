@@ -5,7 +5,6 @@
 
 #include "eval/LandmarkError.hpp"
 #include "solver/Model.hpp"
-#include "solver/NewtonSolver.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim {
@@ -114,24 +113,28 @@ PredictionBand predictionBand(const CaseModel& model, const std::map<std::string
       result = solvePlan(m, start, m.targetsFromPlan(plan, start), m.scene().solver, sc);
     } catch (const std::exception& e) {  // a variant the model refuses (e.g. a blend that pinches tissue)
       result.converged = false;
+      result.outcome = SolveOutcome::refused;
       result.error = e.what();
     }
-    if (result.error == kCancelled) {
+    if (result.outcome == SolveOutcome::cancelled) {
       band.cancelled = true;
       break;
     }
     out.converged = result.converged;
+    out.outcome = result.outcome;
     out.error = result.error;
     out.iterations = result.iterations;
     out.seconds = secondsSince(ts);
     const SurfaceMesh skin = out.converged ? model.deformedSkin(result.state.x) : SurfaceMesh{};
     if (out.converged && !skin.vertices.allFinite()) {  // never in the envelope, and said
       out.converged = false;
+      out.outcome = SolveOutcome::failed;
       out.error = "the converged state gives a skin with non-finite vertices";
     }
     if (i == 0 && !out.converged)
-      throw std::runtime_error("prediction band: the nominal solve did not converge: " + out.error);
+      throw BandNominalFailed(out.outcome, "prediction band: the nominal solve did not converge: " + out.error);
     if (out.converged) {
+      if (control.onSkin) control.onSkin(static_cast<int>(i), skin);
       if (i == 0) {
         nominalSkin = skin;
         band.nominal = result.state;

@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "scene/BondedContact.hpp"
 #include "scene/CaseModel.hpp"
 #include "solver/SimState.hpp"
+#include "solver/SolveOutcome.hpp"
 
 namespace orthosim {
 
@@ -41,12 +43,16 @@ struct BandProgress {
 struct BandControl {
   std::function<void(const BandProgress&)> onProgress;  // at each solve's start and converged substeps
   const std::atomic<bool>* cancel = nullptr;            // checked by every Newton iteration
+  // Each converged run's skin (run 0: the nominal) as it enters the envelope, for a caller that
+  // keeps or checks them; the band itself keeps only their envelope.
+  std::function<void(int run, const SurfaceMesh& skin)> onSkin;
 };
 
 struct BandRun {
   DesignRun run;
   bool converged = false;
-  std::string error;  // why not
+  SolveOutcome outcome = SolveOutcome::failed;  // converged exactly when `converged`
+  std::string error;                            // why not, for people
   int iterations = 0;
   double seconds = 0;  // scene, model and solve
   // Per soft-tissue landmark (PredictionBand::landmarks order): position minus nominal in the
@@ -83,9 +89,15 @@ struct PredictionBand {
 // contact, the bond distance of its derived bonded nodes (volume cases).
 DesignNominal designNominal(const CaseModel& model);
 
-// The band of `plan` on `model` (its spec, tissue and skin). Throws std::runtime_error when the
-// nominal solve fails (there is no band without it), std::invalid_argument for a bad design or a
-// case without a skin. A cancel returns at once with cancelled set.
+// There is no band without its nominal solve: how that solve ended, and why in words.
+struct BandNominalFailed : std::runtime_error {
+  BandNominalFailed(SolveOutcome outcome, const std::string& message) : std::runtime_error(message), outcome(outcome) {}
+  SolveOutcome outcome;
+};
+
+// The band of `plan` on `model` (its spec, tissue and skin). Throws BandNominalFailed when the
+// nominal solve fails, std::invalid_argument for a bad design or a case without a skin. A cancel
+// returns at once with cancelled set.
 PredictionBand predictionBand(const CaseModel& model, const std::map<std::string, FragmentMotion>& plan,
                               const BandOptions& options = {}, const BandControl& control = {});
 

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "physics/LargestValidFraction.hpp"
+
 namespace orthosim {
 namespace {
 
@@ -77,11 +79,33 @@ Vector12d SoftTissueEnergy::elementGradient(int e, const Eigen::Matrix3Xd& x) co
 
 Eigen::Matrix3Xd SoftTissueEnergy::gradient(const Eigen::Matrix3Xd& x) const {
   Eigen::Matrix3Xd g = Eigen::Matrix3Xd::Zero(3, x.cols());
+  addGradient(x, g);
+  return g;
+}
+
+void SoftTissueEnergy::addGradient(const Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& g) const {
   for (int e : active_) {
     const Vector12d ge = elementGradient(e, x);
     for (int a = 0; a < 4; ++a) g.col(mesh_.tets(a, e)) += ge.segment<3>(3 * a);
   }
-  return g;
+}
+
+void SoftTissueEnergy::addHessian(const EnergyState& s, bool projectToPSD, HessianSink& out) const {
+  for (int e : active_) {
+    const Eigen::Vector4i nodes = mesh_.tets.col(e);
+    out.add(nodes.data(), 4, elementHessian(e, s.x, projectToPSD));
+  }
+}
+
+bool SoftTissueEnergy::noElementInverted(const Eigen::Matrix3Xd& x) const {
+  for (int e : active_)
+    if (deformationGradient(e, x).determinant() <= 0) return false;
+  return true;
+}
+
+double SoftTissueEnergy::maxStep(const EnergyState& s, const Eigen::Matrix3Xd& dx) const {
+  if (noElementInverted(s.x + dx)) return 1.0;
+  return largestValidFraction([&](double alpha) { return noElementInverted(s.x + alpha * dx); }, kStepBisections);
 }
 
 // H_ab(i, j) = V sum_kl gradN_a(k) gradN_b(l) A(i + 3k, j + 3l), contracted one index at a time

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "mesh/TetMesh.hpp"
+#include "physics/EnergyTerm.hpp"
 #include "physics/NeoHookean.hpp"
 
 namespace orthosim {
@@ -13,8 +14,11 @@ namespace orthosim {
 using Matrix12d = Eigen::Matrix<double, 12, 12>;
 using Vector12d = Eigen::Matrix<double, 12, 1>;
 
-class SoftTissueEnergy {
+class SoftTissueEnergy : public EnergyTerm {
  public:
+  // A step that turns an element over is cut to within 2^-kStepBisections of where the first one flips.
+  static constexpr int kStepBisections = 6;
+
   SoftTissueEnergy(const TetMesh& mesh, const NeoHookean& material);
 
   const TetMesh& mesh() const { return mesh_; }
@@ -38,11 +42,21 @@ class SoftTissueEnergy {
   // is about machine epsilon times this however small the energy itself is (a rigid motion).
   double roundingScale() const;
 
+  // The energy term over the active elements; maxStep: the largest fraction (to 2^-kStepBisections
+  // below it) of the step that leaves every active element's volume positive.
+  double value(const EnergyState& s) const override { return energy(s.x); }
+  void addGradient(const EnergyState& s, Eigen::Matrix3Xd& g) const override { addGradient(s.x, g); }
+  void addHessian(const EnergyState& s, bool projectToPSD, HessianSink& out) const override;
+  double maxStep(const EnergyState& s, const Eigen::Matrix3Xd& dx) const override;
+  bool noElementInverted(const Eigen::Matrix3Xd& x) const;
+
   double elementEnergy(int e, const Eigen::Matrix3Xd& x) const;
   Vector12d elementGradient(int e, const Eigen::Matrix3Xd& x) const;
   Matrix12d elementHessian(int e, const Eigen::Matrix3Xd& x, bool projectToPSD) const;
 
  private:
+  void addGradient(const Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& g) const;
+
   const TetMesh& mesh_;
   NeoHookean material_;
   std::vector<Eigen::Matrix3d, Eigen::aligned_allocator<Eigen::Matrix3d>> restInverse_;  // Dm^-1

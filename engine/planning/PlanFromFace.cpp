@@ -11,7 +11,6 @@
 
 #include "planning/LandmarkJacobian.hpp"
 #include "solver/LinearResponse.hpp"
-#include "solver/NewtonSolver.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim {
@@ -107,14 +106,14 @@ class FaceFit {
     const std::map<std::string, FragmentMotion> plan = planFromPoses(fragments_, poses(v), case_.spec.frame);
     ++solves_;
     SolveResult r = solvePlan(model_, from, model_.targetsFromPlan(plan, from), model_.scene().solver, control_);
-    if (!r.converged && r.error != kCancelled && !model_.isRestState(from)) {
+    if (!r.converged && r.outcome != SolveOutcome::cancelled && !model_.isRestState(from)) {
       ++solves_;
       const SimState rest = model_.restState();
       r = solvePlan(model_, rest, model_.targetsFromPlan(plan, rest), model_.scene().solver, control_);
     }
     if (std::getenv("ORTHOSIM_TRACE"))
-      std::cerr << "  face: solve " << (r.converged ? "converged" : "failed") << " in " << r.iterations
-                << " iterations, " << r.timings.total << " s; pose values " << v.transpose() << "\n";
+      std::cerr << "  face: solve " << solveOutcomeName(r.outcome) << " in " << r.iterations << " iterations, "
+                << r.timings.total << " s; pose values " << v.transpose() << "\n";
     if (!r.converged) {
       lastError_ = r.error;
       return std::nullopt;
@@ -266,7 +265,7 @@ FaceFitResult planFromFace(Model& model, const CaseModel& c, const std::vector<P
   Eigen::VectorXd v = fit.valuesOf(start);
   std::optional<SimState> s = fit.solve(v, model.restState());
   if (!s) {
-    if (control.cancelled()) throw std::runtime_error("cancelled");
+    if (control.cancelled()) throw std::runtime_error(solveOutcomeName(SolveOutcome::cancelled));
     throw std::runtime_error("the start poses cannot be solved: " + fit.lastError());
   }
   FaceFitResult out;

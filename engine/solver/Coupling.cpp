@@ -189,6 +189,16 @@ void Coupling::step(const Eigen::VectorXd& dz, double alpha, SimState& s) const 
   if (!freeFragments_.empty()) updateConstrainedNodes(s);
 }
 
+Eigen::Matrix3Xd Coupling::stepDisplacement(const Eigen::VectorXd& dz, const SimState& state) const {
+  SimState moved = state;
+  step(dz, 1.0, moved);
+  Eigen::Matrix3Xd dx = moved.x - state.x;
+  for (int i = 0; i < numNodes(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (dof_[3 * i + c] >= 0) dx(c, i) = dz[dof_[3 * i + c]];  // exactly, not (x + dz) - x
+  return dx;
+}
+
 double Coupling::forceNorm(const Eigen::VectorXd& r) const {
   return r.size() ? r.cwiseQuotient(dofLength_).lpNorm<Eigen::Infinity>() : 0.0;
 }

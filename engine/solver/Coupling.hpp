@@ -65,6 +65,9 @@ class Coupling {
   // z += alpha dz: free node components move, free fragments translate and rotate (exactly),
   // skinned nodes follow their fragments.
   void step(const Eigen::VectorXd& dz, double alpha, SimState& state) const;
+  // The node displacement of the whole step dz from `state`: dz itself on free components, the
+  // straight line to where step() puts them for nodes that follow free fragments, 0 elsewhere.
+  Eigen::Matrix3Xd stepDisplacement(const Eigen::VectorXd& dz, const SimState& state) const;
   // P^T g: the reduced gradient (forces on free nodes, force and torque on free fragments).
   Eigen::VectorXd reduce(const Eigen::Matrix3Xd& g, const SimState& state) const;
   // Positions of every node from the fragment poses and fixed displacements (free nodes untouched).

@@ -1,10 +1,42 @@
 #include "solver/Model.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <stdexcept>
 
 namespace orthosim {
+namespace {
+
+// Adds the time a term after the soft tissue (contact) takes to `seconds`.
+class TermClock {
+ public:
+  TermClock(size_t term, double& seconds) : seconds_(term > 0 ? &seconds : nullptr) {}
+  ~TermClock() {
+    if (seconds_) *seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  TermClock(const TermClock&) = delete;
+  TermClock& operator=(const TermClock&) = delete;
+
+ private:
+  double* seconds_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+// A node's own block into the reduced matrix; the pattern has no room for blocks coupling nodes.
+class NodeBlocksInto : public HessianSink {
+ public:
+  explicit NodeBlocksInto(ReducedSystem& system) : system_(system) {}
+  void add(const int* nodes, int count, const Eigen::Ref<const Eigen::MatrixXd>& block) override {
+    if (count != 1) throw std::logic_error("the reduced matrix takes only a node's own block from a term");
+    system_.addNodeBlock(nodes[0], block);
+  }
+
+ private:
+  ReducedSystem& system_;
+};
+
+}  // namespace
 
 Model::Model(Scene sceneIn) : scene_(std::make_shared<const Scene>(std::move(sceneIn))) {
   const Scene& scene = *scene_;
@@ -26,6 +58,7 @@ Model::Model(Scene sceneIn) : scene_(std::make_shared<const Scene>(std::move(sce
   energy_ = energy;
   lengthScale_ = scene_->mesh.meanEdgeLength();
   buildContact();
+  collectTerms();
   system_ = std::make_unique<ReducedSystem>(*energy_, *coupling_);
   factor_.analyze(system_->matrix());
   // The rest Hessian is positive definite exactly when every part of the tissue is held: check it
@@ -53,6 +86,12 @@ Model::Model(const Model& prototype, ShareImmutable)
       lengthScale_(prototype.lengthScale_),
       buildSeconds_(prototype.buildSeconds_) {
   factor_.analyzeLike(prototype.factor_);
+  collectTerms();
+}
+
+void Model::collectTerms() {
+  terms_ = {energy_.get()};
+  if (contact_) terms_.push_back(contact_.get());
 }
 
 // Elements with at least one node that has a free DoF or follows a free fragment.
@@ -115,20 +154,43 @@ std::vector<ActiveContact> Model::activeContacts(const SimState& s) const {
 }
 
 double Model::totalEnergy(const SimState& s) const {
-  const double soft = energy_->energy(s.x);
-  if (!contact_ || !std::isfinite(soft)) return soft;
-  return soft + contact_->energy(activeContacts(s));
+  const EnergyState at{s.x, s.fragments};
+  double sum = 0;
+  for (size_t k = 0; k < terms_.size() && std::isfinite(sum); ++k) {
+    const TermClock clock(k, contactSeconds_);
+    sum += terms_[k]->value(at);
+  }
+  return sum;
 }
 
 Eigen::Matrix3Xd Model::totalGradient(const SimState& s) const {
-  Eigen::Matrix3Xd g = energy_->gradient(s.x);
-  if (contact_) contact_->addGradient(activeContacts(s), g);
+  const EnergyState at{s.x, s.fragments};
+  Eigen::Matrix3Xd g = Eigen::Matrix3Xd::Zero(3, s.x.cols());
+  for (size_t k = 0; k < terms_.size(); ++k) {
+    const TermClock clock(k, contactSeconds_);
+    terms_[k]->addGradient(at, g);
+  }
   return g;
 }
 
+// The soft tissue's Hessian goes through the reduced system's element pattern (in parallel, by
+// colour); the other terms add node blocks, always projected: contact's curvature part is negative
+// outside a convex corner, and the reduced matrix must stay positive definite.
 void Model::assemble(const SimState& s, const Eigen::Matrix3Xd& g, bool projectToPSD) {
   system_->assemble(s, g, projectToPSD);
-  for (const ActiveContact& c : activeContacts(s)) system_->addNodeBlock(c.node, ContactEnergy::hessianBlock(c));
+  const EnergyState at{s.x, s.fragments};
+  NodeBlocksInto sink{*system_};
+  for (size_t k = 1; k < terms_.size(); ++k) {
+    const TermClock clock(k, contactSeconds_);
+    terms_[k]->addHessian(at, true, sink);
+  }
+}
+
+double Model::maxStep(const SimState& s, const Eigen::Matrix3Xd& dx) const {
+  const EnergyState at{s.x, s.fragments};
+  double fraction = 1.0;
+  for (const EnergyTerm* term : terms_) fraction = std::min(fraction, term->maxStep(at, dx));
+  return fraction;
 }
 
 bool Model::factorIsAt(const SimState& s) const {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "contact/ContactEnergy.hpp"
+#include "physics/EnergyTerm.hpp"
 #include "physics/SoftTissueEnergy.hpp"
 #include "scene/Scene.hpp"
 #include "solver/CholmodFactor.hpp"
@@ -57,12 +58,17 @@ class Model {
   double stepTolerance() const;
   double buildSeconds() const { return buildSeconds_; }
 
-  // Soft tissue plus contact (when the scene has contact pairs): what Newton minimises.
+  // The sum of the energy terms: soft tissue, then contact when the scene has contact pairs. What
+  // Newton minimises.
+  const std::vector<const EnergyTerm*>& terms() const { return terms_; }
   double totalEnergy(const SimState& s) const;
   Eigen::Matrix3Xd totalGradient(const SimState& s) const;
   // The reduced Hessian of the total energy at s into system().matrix().
   void assemble(const SimState& s, const Eigen::Matrix3Xd& g, bool projectToPSD);
+  // The largest fraction of the step s.x -> s.x + dx that every term allows (EnergyTerm::maxStep).
+  double maxStep(const SimState& s, const Eigen::Matrix3Xd& dx) const;
   const ContactEnergy* contact() const { return contact_.get(); }
+  // Time spent in the terms after the soft tissue (contact), seconds.
   double contactSeconds() const { return contactSeconds_; }
 
   SimState restState() const { return coupling_->restState(); }
@@ -80,12 +86,14 @@ class Model {
  private:
   std::vector<int> elementsWithFreedom() const;
   void buildContact();
+  void collectTerms();
 
   std::shared_ptr<const Scene> scene_;
   std::shared_ptr<const SoftTissueEnergy> energy_;  // refers to scene_->mesh
   std::shared_ptr<const Coupling> coupling_;
   std::unique_ptr<ReducedSystem> system_;
   std::unique_ptr<ContactEnergy> contact_;  // null without contact pairs
+  std::vector<const EnergyTerm*> terms_;    // *energy_ first, then contact_ if any
   mutable double contactSeconds_ = 0;
   CholmodFactor factor_;
   std::optional<SimState> factorState_;  // where factor_ was made, when valid

@@ -16,11 +16,10 @@ constexpr size_t kStallWindow = 8;  // iterations
 // untangling, is shortened instead.
 constexpr size_t kUntangleMaxElements = 16;
 constexpr int kUntangleRounds = 3;
-// A full step that turns elements over is cut to kBelowFeasible of the largest fraction that
-// keeps them all positive, found to 2^-kFeasibleBisections (a step at the boundary would start
+// A full step that turns elements over is cut to kBelowFeasible of the largest fraction the
+// energy terms allow, each found to its own resolution (a step at the boundary would start
 // next to a singular element). Halving instead cost the fine setback 4 of its 13 iterations.
 constexpr double kBelowFeasible = 0.9;
-constexpr int kFeasibleBisections = 6;
 // A prediction shorter than this many mean edge lengths starts Newton with a chord step (0.2 and
 // 0.5 mm drag steps on the coarse phantom: one chord step, 0.02-0.03 s; a 5 mm one overshoots).
 constexpr double kChordFirstStep = 0.25;
@@ -55,8 +54,8 @@ class Newton {
     std::vector<double> history;  // residual per iteration
     bool lastWasChord = false;
     for (int it = 0;; ++it) {
-      if (control_.cancelled()) return fail(rep, kCancelled);
-      if (control_.pastDeadline()) return fail(rep, kPastDeadline);
+      if (control_.cancelled()) return stop(rep, SolveOutcome::cancelled, solveOutcomeName(SolveOutcome::cancelled));
+      if (control_.pastDeadline()) return stop(rep, SolveOutcome::pastDeadline, "past the time budget");
       Eigen::Matrix3Xd g;
       Eigen::VectorXd r;
       {
@@ -109,6 +108,7 @@ class Newton {
     rep.energy = model_.totalEnergy(x);
     rep.minDetF = model_.energy().minDetF(x.x);
     rep.converged = true;
+    rep.outcome = SolveOutcome::converged;
     state = std::move(x);
     return rep;
   }
@@ -118,8 +118,16 @@ class Newton {
   // the predictor leaves the state, and so the factorisation, as they were.
   SubstepReport& fail(SubstepReport& rep, const std::string& why, bool stateMoved = true) {
     rep.converged = false;
+    rep.outcome = SolveOutcome::failed;
     rep.failure = why;
     if (stateMoved) model_.factor().invalidate();
+    return rep;
+  }
+
+  // Stopped from outside (a cancel, the deadline) rather than by Newton itself.
+  SubstepReport& stop(SubstepReport& rep, SolveOutcome outcome, const std::string& why) {
+    fail(rep, why);
+    rep.outcome = outcome;
     return rep;
   }
 
@@ -276,20 +284,11 @@ class Newton {
     return 0.0;
   }
 
-  // Where the full step turns elements over, the fraction the line search tries next: 0.9 of the
-  // largest that keeps every element's volume positive (to 1/64), else half the step.
+  // Where the full step has infinite energy, the fraction the line search tries next: 0.9 of the
+  // largest the energy terms allow (an element turned over), else half the step.
   double feasibleFraction(const SimState& x, const Eigen::VectorXd& dz) const {
-    const SoftTissueEnergy& energy = model_.energy();
-    const double largest = largestValidFraction(
-        [&](double alpha) {
-          SimState trial = x;
-          coupling_.step(dz, alpha, trial);
-          for (int e : energy.activeElements())
-            if (energy.deformationGradient(e, trial.x).determinant() <= 0) return false;
-          return true;
-        },
-        kFeasibleBisections);
-    return largest > 0 ? kBelowFeasible * largest : 0.5;
+    const double largest = model_.maxStep(x, coupling_.stepDisplacement(dz, x));
+    return largest > 0 && largest < 1 ? kBelowFeasible * largest : 0.5;
   }
 
   Model& model_;
@@ -311,15 +310,6 @@ bool lineSearchAccepts(const LineSearchTrial& t) {
   if (!(-t.slope < t.roundoff)) return false;
   if (t.residual <= kRoundoffEscapeResidual * t.forceTolerance) return true;
   return t.alpha == 1.0 && t.trialResidual <= 0.5 * t.residual;  // false for NaN (not evaluated)
-}
-
-double largestValidFraction(const std::function<bool(double)>& valid, int bisections) {
-  double lo = 0, hi = 1;
-  for (int k = 0; k < bisections; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (valid(mid) ? lo : hi) = mid;
-  }
-  return lo;
 }
 
 bool lineSearchNeedsTrialResidual(const LineSearchTrial& t) {

@@ -12,13 +12,9 @@
 namespace orthosim {
 
 // On success `state` holds the converged state; on failure it is left as it was. A cancel stops
-// at the next iteration with failure kCancelled.
+// at the next iteration with outcome cancelled, a deadline with outcome pastDeadline.
 SubstepReport solveSubstep(Model& model, const BoundaryTargets& targets, const SolverSettings& settings,
                            SimState& state, SolveTimings& timings, const SolveControl& control = {});
-
-inline constexpr const char* kCancelled = "cancelled";
-// The failure of a substep stopped at SolveControl::deadline.
-inline constexpr const char* kPastDeadline = "past the time budget";
 
 // One trial of the line search: the step alpha dz from energy e0 to `energy`, with slope = r . dz
 // the energy's derivative along dz at alpha = 0 (negative for a descent direction).
@@ -44,11 +40,5 @@ bool lineSearchAccepts(const LineSearchTrial& t);
 // Whether lineSearchAccepts can use t.trialResidual for this trial (a full step whose predicted
 // decrease is below rounding): the line search evaluates it only then.
 bool lineSearchNeedsTrialResidual(const LineSearchTrial& t);
-
-// The largest step fraction in [0, 1) that `valid` accepts, found by `bisections` halvings of
-// [0, 1] (so within 2^-bisections below the boundary when validity is one interval [0, a*)); 0
-// when no bisection point is valid. The line search starts a little below it when the full Newton
-// step turns elements over: the step is then mostly good, and halving it wastes half.
-double largestValidFraction(const std::function<bool(double)>& valid, int bisections);
 
 }  // namespace orthosim

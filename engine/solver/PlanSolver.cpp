@@ -57,6 +57,7 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
   if (!model.factorIsAt(start)) model.factor().invalidate();  // it belongs to another state
   while (s < 1.0) {
     if (spent >= settings.maxTotalIterations) {
+      r.outcome = SolveOutcome::outOfIterations;
       r.error = "the solve did not converge within " + std::to_string(settings.maxTotalIterations) +
                 " Newton iterations (solver max_total_iterations); the state at load fraction " + std::to_string(s) +
                 " is kept";
@@ -68,13 +69,16 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
     rep.to = s1;
     spent += rep.iterations + rep.chordIterations;
     const bool ok = rep.converged;
+    const SolveOutcome outcome = rep.outcome;
     const std::string failure = rep.failure;
     r.substeps.push_back(std::move(rep));
-    if (failure == kCancelled) {
-      r.error = kCancelled;
+    if (outcome == SolveOutcome::cancelled) {
+      r.outcome = SolveOutcome::cancelled;
+      r.error = solveOutcomeName(SolveOutcome::cancelled);
       break;
     }
-    if (failure == kPastDeadline) {  // a shorter substep would not help: the time is spent
+    if (outcome == SolveOutcome::pastDeadline) {  // a shorter substep would not help: the time is spent
+      r.outcome = SolveOutcome::pastDeadline;
       r.error = "the solve ran past its time budget; the state at load fraction " + std::to_string(s) + " is kept";
       break;
     }
@@ -92,6 +96,7 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
     ds *= 0.5;
     ++r.refinements;
     if (ds < minStep) {
+      r.outcome = SolveOutcome::failed;
       r.error = "the solve did not converge: substep " + std::to_string(s) + " -> " + std::to_string(s1) + " failed (" +
                 failure + ") after " + std::to_string(r.refinements) + " refinements; the state at load fraction " +
                 std::to_string(s) + " is kept";
@@ -100,6 +105,7 @@ SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& ta
   }
   r.loadFraction = s;
   r.converged = s >= 1.0;
+  if (r.converged) r.outcome = SolveOutcome::converged;
   summarize(model, r);
   for (const PinchedTissue& p : findPinchedTissue(model, r.state.x)) {
     const auto same = [&](const PinchedTissue& q) { return q.fragments == p.fragments; };

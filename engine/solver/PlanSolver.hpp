@@ -8,7 +8,7 @@
 
 namespace orthosim {
 
-// A cancelled solve returns converged = false, error "cancelled", and the last converged state.
+// A cancelled solve returns outcome cancelled (error "cancelled") and the last converged state.
 SolveResult solvePlan(Model& model, const SimState& start, const PlanTargets& targets, const SolverSettings& settings,
                       const SolveControl& control = {});
 

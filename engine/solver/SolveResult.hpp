@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "solver/SimState.hpp"
+#include "solver/SolveOutcome.hpp"
 
 namespace orthosim {
 
@@ -27,12 +28,14 @@ struct SubstepReport {
   double energy = 0;        // N mm
   double minDetF = 0;
   bool converged = false;
-  std::string failure;  // why it did not converge
+  SolveOutcome outcome = SolveOutcome::failed;  // converged exactly when `converged`
+  std::string failure;                          // why it did not converge, for people
 };
 
 struct SolveResult {
   bool converged = false;
-  std::string error;                             // set when !converged
+  SolveOutcome outcome = SolveOutcome::failed;   // converged exactly when `converged`
+  std::string error;                             // set when !converged, for people
   double loadFraction = 0;                       // of the plan reached by `state`
   SimState state;                                // the last converged state (the start state if none converged)
   std::vector<SubstepReport> substeps;           // every attempt, failed ones included

@@ -14,9 +14,13 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <memory>
 
+#include "cli/BenchCommands.hpp"
 #include "cli/BenchContext.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "eval/Cohort.hpp"
 #include "eval/PredictionBandJson.hpp"
 #include "eval/Statistics.hpp"
@@ -121,6 +125,22 @@ int runBandCohortBench(const BandCohortBenchOptions& o) {
   }
   if (temporary) fs::remove_all(dir);
   return failed ? 2 : 0;
+}
+
+void addBandCohortBench(CLI::App& bench) {
+  auto options = std::make_shared<BandCohortBenchOptions>();
+  BandCohortBenchOptions& o = *options;
+  auto* bandCohort =
+      bench.add_subcommand("band-cohort",
+                           "The prediction band's sensitivity table on the synthetic cohort: per "
+                           "parameter and soft-tissue landmark, the median one-at-a-time effect (coarse)");
+  const int all = static_cast<int>(cohortPatients().size());
+  bandCohort->add_option("--patients", o.patients, "The first N patients (default: all)")->check(CLI::Range(1, all));
+  addPatientOption(*bandCohort, o.patientIds);
+  bandCohort->add_flag("--corners", o.corners, "Also solve the factorial corners (the table needs only the others)");
+  addDataOption(*bandCohort, o.dataDir, "Folder for the cohort's cases and tissue cache (kept)");
+  addJsonOption(*bandCohort, o.jsonPath);
+  runWhenChosen(*bandCohort, [options] { return runBandCohortBench(*options); });
 }
 
 }  // namespace orthosim::cli

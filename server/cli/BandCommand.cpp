@@ -6,8 +6,12 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 
+#include "cli/CommandLine.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "eval/PredictionBandJson.hpp"
 #include "io/SurfaceImport.hpp"
 #include "scene/PlanFile.hpp"
@@ -106,6 +110,32 @@ int runBand(const std::string& casePath, const BandCommandOptions& o) {
             << " s; band width up to " << band.envelope.width().maxCoeff() << " mm; envelope_low.ply, "
             << "envelope_high.ply, nominal.ply and band.json in " << o.outDir << "\n";
   return band.converged() == static_cast<int>(band.runs.size()) ? 0 : 2;
+}
+
+void addBandCommand(CLI::App& parent) {
+  struct Args {
+    std::string casePath;
+    BandCommandOptions options;
+    CacheOptions cache;
+  };
+  auto args = std::make_shared<Args>();
+  BandCommandOptions& o = args->options;
+  auto* band =
+      parent.add_subcommand("band",
+                            "Prediction band of a case's plan over the model parameters that change the "
+                            "answer: envelope surfaces, landmark ranges and sensitivities (docs/prediction-band.md)");
+  addCaseArgument(*band, args->casePath);
+  band->add_option("--out", o.outDir, "Output folder")->required();
+  addPlanOption(*band, o.planPath,
+                "Plan file {fragment: {translation_mm, rotation_deg, center_mm}} instead of the case's plan");
+  addResolutionOption(*band, o.resolution, "coarse (preview) or fine (confirm)");
+  band->add_option("--range-scale", o.rangeScale, "Scale of every parameter range about the nominal (0, 2]");
+  band->add_flag("--no-corners", o.noCorners, "Only the one-at-a-time runs (no factorial corners)");
+  addCacheOptions(*band, args->cache);
+  runWhenChosen(*band, [args] {
+    args->options.cacheDir = args->cache.folder();
+    return runBand(args->casePath, args->options);
+  });
 }
 
 }  // namespace orthosim::cli

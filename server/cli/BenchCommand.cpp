@@ -2,10 +2,14 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "cli/BenchCommands.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "eval/Statistics.hpp"
 #include "meshing/BoxMesh.hpp"
 #include "scene/BlockScene.hpp"
@@ -102,6 +106,15 @@ int runBench(const BenchOptions& opt) {
     out << rows.dump(2) << "\n";
   }
   return 0;
+}
+
+void addBlocksBench(CLI::App& bench) {
+  auto options = std::make_shared<BenchOptions>();
+  auto* blocks = bench.add_subcommand("blocks", "Time solves of generated blocks with two bonded fragments");
+  blocks->add_option("--tets", options->tetCounts, "Approximate tetrahedron counts")->delimiter(',');
+  addRepeatsOption(*blocks, options->repeats, "Solves per size (median reported)");
+  addJsonOption(*blocks, options->jsonPath);
+  runWhenChosen(*blocks, [options] { return runBench(*options); });
 }
 
 }  // namespace orthosim::cli

@@ -1,48 +1,21 @@
 #pragma once
-// `orthosim bench MODE`: one subcommand per benchmark (blocks, phantom, case, latency, render,
-// cohort, scan), each with only its own options.
-#include <CLI/CLI.hpp>
-
-#include "cli/Commands.hpp"
+// `orthosim bench MODE`: one subcommand per benchmark, each added by its own file with only its
+// own options.
+namespace CLI {
+class App;
+}
 
 namespace orthosim::cli {
 
-class BenchCommands {
- public:
-  // Adds "bench" and its subcommands to `app`; the options are bound to this object, which must
-  // outlive the parse.
-  explicit BenchCommands(CLI::App& app);
-  BenchCommands(const BenchCommands&) = delete;
-  BenchCommands& operator=(const BenchCommands&) = delete;
-
-  bool chosen() const { return bench_->parsed(); }
-  // Runs the chosen benchmark; its exit code.
-  int run() const;
-
- private:
-  void addBlocks();
-  void addPhantom();
-  void addCase();
-  void addLatency();
-  void addSessions();
-  void addRender();
-  void addCohort();
-  void addBandCohort();
-  void addFace();
-  void addScan();
-
-  CLI::App* bench_ = nullptr;
-  CLI::App *blocks_ = nullptr, *phantom_ = nullptr, *case_ = nullptr, *latency_ = nullptr, *render_ = nullptr,
-           *cohort_ = nullptr, *sessions_ = nullptr, *bandCohort_ = nullptr, *face_ = nullptr, *scan_ = nullptr;
-  BenchOptions blocksOptions_;
-  CaseBenchOptions phantomOptions_, caseOptions_;
-  LatencyBenchOptions latencyOptions_;
-  SessionsBenchOptions sessionsOptions_;
-  RenderBenchOptions renderOptions_;
-  CohortBenchOptions cohortOptions_;
-  BandCohortBenchOptions bandCohortOptions_;
-  FaceBenchOptions faceOptions_;
-  ScanBenchOptions scanOptions_;
-};
+void addBlocksBench(CLI::App& bench);
+void addPhantomBench(CLI::App& bench);
+void addCaseBench(CLI::App& bench);
+void addLatencyBench(CLI::App& bench);
+void addSessionsBench(CLI::App& bench);
+void addRenderBench(CLI::App& bench);
+void addCohortBench(CLI::App& bench);
+void addBandCohortBench(CLI::App& bench);
+void addFaceBench(CLI::App& bench);
+void addScanBench(CLI::App& bench);
 
 }  // namespace orthosim::cli

@@ -7,10 +7,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "cli/BenchCommands.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "eval/Statistics.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "scene/CaseModel.hpp"
@@ -136,6 +140,35 @@ int runCaseBench(const CaseBenchOptions& opt) {
   fs::remove_all(work);
   if (!opt.jsonPath.empty()) std::ofstream(opt.jsonPath) << out.dump(2) << "\n";
   return 0;
+}
+
+namespace {
+
+const char* const kPlanDescription =
+    "A JSON file {fragment: {translation_mm, rotation_deg, center_mm}} solved instead of the case's plan";
+
+}  // namespace
+
+void addPhantomBench(CLI::App& bench) {
+  auto options = std::make_shared<CaseBenchOptions>();
+  auto* phantom =
+      bench.add_subcommand("phantom", "Time building the phantom's coarse and fine models and solving its plan");
+  addVariantOption(*phantom, options->phantomVariant);
+  addPlanOption(*phantom, options->planPath, kPlanDescription);
+  addRepeatsOption(*phantom, options->repeats, "Runs (medians reported)");
+  addJsonOption(*phantom, options->jsonPath);
+  runWhenChosen(*phantom, [options] { return runCaseBench(*options); });
+}
+
+void addCaseBench(CLI::App& bench) {
+  auto options = std::make_shared<CaseBenchOptions>();
+  auto* command =
+      bench.add_subcommand("case", "Time building a surface-based case's coarse and fine models and solving its plan");
+  addCaseArgument(*command, options->casePath);
+  addPlanOption(*command, options->planPath, kPlanDescription);
+  addRepeatsOption(*command, options->repeats, "Runs (medians reported)");
+  addJsonOption(*command, options->jsonPath);
+  runWhenChosen(*command, [options] { return runCaseBench(*options); });
 }
 
 }  // namespace orthosim::cli

@@ -66,7 +66,7 @@ std::map<std::string, CohortPatientRuns> runCohortOnRedis(const server::RedisAdd
     for (const CohortPatient& p : patients) {
       server::JobMessage m;
       m.job = benchId + "-" + std::to_string(++n);
-      m.kind = "cohort";
+      m.kind = server::JobKind::cohort;
       m.caseId = p.id;
       m.caseHash = server::caseContentHash(specs.at(p.id));
       m.resolution = Resolution::Coarse;

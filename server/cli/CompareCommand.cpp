@@ -4,9 +4,13 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 
+#include "cli/CommandLine.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "eval/Comparison.hpp"
 #include "io/SurfaceImport.hpp"
 #include "render/ClinicalView.hpp"
@@ -132,6 +136,40 @@ int runCompare(const CompareOptions& o) {
     std::cerr << "orthosim compare: " << e.what() << "\n";
     return 1;
   }
+}
+
+void addCompareCommand(CLI::App& parent) {
+  auto options = std::make_shared<CompareOptions>();
+  CompareOptions& o = *options;
+  auto* compare = parent.add_subcommand("compare",
+                                        "Error of a predicted skin against a reference surface (signed distance, "
+                                        "area within 1-4 mm, face region, soft-tissue landmarks)");
+  compare->add_option("predicted", o.predicted, "Predicted skin (.stl, .obj, .ply), e.g. a solve's skin.obj")
+      ->required()
+      ->check(CLI::ExistingFile);
+  compare->add_option("reference", o.reference, "Reference surface: a finer solve or a post-operative scan")
+      ->required()
+      ->check(CLI::ExistingFile);
+  auto* casePath = compare
+                       ->add_option("--case", o.casePath,
+                                    "The case (JSON): face region from its frame and landmarks, "
+                                    "landmark errors on its rest skin")
+                       ->check(CLI::ExistingFile);
+  compare
+      ->add_option("--rest", o.restPath,
+                   "With --case: the rest skin with the predicted skin's triangles "
+                   "(a solve's skin_rest.obj; default: the case's skin)")
+      ->check(CLI::ExistingFile)
+      ->needs(casePath);
+  compare->add_option("--map", o.mapPath, "Write the predicted skin coloured by its error (.ply or .obj)");
+  compare->add_option("--image", o.imagePath, "Render the error map of the predicted skin (.png or .jpg)");
+  compare->add_option("--view", o.view,
+                      "The image's view: frontal, profile, profile_left, three_quarter, "
+                      "three_quarter_left, worms_eye, birds_eye");
+  compare->add_option("--range", o.rangeMm, "Colour range of the map and image, +-mm (default 3)")
+      ->check(CLI::Range(0.01, 1000.0));
+  addJsonOption(*compare, o.jsonPath);
+  runWhenChosen(*compare, [options] { return runCompare(*options); });
 }
 
 }  // namespace orthosim::cli

@@ -4,7 +4,10 @@
 // `orthosim solve` would (coarse model, built tissue cached in the output folder).
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
+#include "cli/CommandLine.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
 #include "phantom/PhantomCase.hpp"
 
@@ -18,6 +21,13 @@ int runDemo(const std::string& outDir) {
   SolveOptions options;
   options.cacheDir = (fs::path(outDir) / "cache").string();
   return runSolve(casePath, (fs::path(outDir) / "result").string(), options);
+}
+
+void addDemoCommand(CLI::App& parent) {
+  auto out = std::make_shared<std::string>("orthosim-demo");
+  auto* demo = parent.add_subcommand("demo", "Write the built-in demo scene and solve it (no data needed)");
+  demo->add_option("--out", *out, "Output folder (scene/ and result/ inside)");
+  runWhenChosen(*demo, [out] { return runDemo(*out); });
 }
 
 }  // namespace orthosim::cli

@@ -7,9 +7,13 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 
+#include "cli/BenchCommands.hpp"
 #include "cli/BenchContext.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "eval/Cohort.hpp"
 #include "eval/Statistics.hpp"
 #include "planning/PlanFromFace.hpp"
@@ -131,6 +135,19 @@ int runFaceBench(const FaceBenchOptions& o) {
     std::ofstream(o.jsonPath)
         << json{{"date", utcNow()}, {"load", loadAverage()}, {"repeats", o.repeats}, {"patients", out}}.dump(2) << "\n";
   return status;
+}
+
+void addFaceBench(CLI::App& bench) {
+  auto options = std::make_shared<FaceBenchOptions>();
+  auto* face =
+      bench.add_subcommand("face",
+                           "Planning from the face on the synthetic cohort: from rest to each plan's predicted "
+                           "soft-tissue landmarks (iterations, time, misses, bone error)");
+  face->add_option("--patients", options->patients, "The first N patients (default: all)")->check(CLI::Range(1, 1000));
+  addDataOption(*face, options->dataDir, "Folder for the cohort's cases and tissue cache (kept)");
+  addRepeatsOption(*face, options->repeats, "Fits per patient (median time reported)");
+  addJsonOption(*face, options->jsonPath);
+  runWhenChosen(*face, [options] { return runFaceBench(*options); });
 }
 
 }  // namespace orthosim::cli

@@ -8,12 +8,16 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "cli/BenchClient.hpp"
+#include "cli/BenchCommands.hpp"
 #include "cli/BenchServer.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "eval/Statistics.hpp"
 
 namespace orthosim::cli {
@@ -105,6 +109,21 @@ int runLatencyBench(const LatencyBenchOptions& options) {
     status = 1;
   }
   return status;
+}
+
+void addLatencyBench(CLI::App& bench) {
+  auto options = std::make_shared<LatencyBenchOptions>();
+  LatencyBenchOptions& o = *options;
+  o.webDir = ORTHOSIM_WEB_DIR;
+  auto* latency = bench.add_subcommand("latency",
+                                       "Time coarse previews through the planning server (WebSocket round "
+                                       "trips on the phantom)");
+  latency->add_option("--changes", o.changes, "Pose changes")->check(CLI::Range(1, 10000));
+  latency->add_option("--step-mm", o.stepMm, "Maxilla advancement per pose change, mm")->check(CLI::Range(0.01, 2.0));
+  addDataOption(*latency, o.dataDir, "Data folder (phantom and mesh cache, reused)");
+  addVariantOption(*latency, o.phantomVariant);
+  addJsonOption(*latency, o.jsonPath);
+  runWhenChosen(*latency, [options] { return runLatencyBench(*options); });
 }
 
 }  // namespace orthosim::cli

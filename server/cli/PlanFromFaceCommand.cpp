@@ -3,8 +3,12 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 
+#include "cli/CommandLine.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "io/SurfaceImport.hpp"
 #include "math/Angles.hpp"
 #include "planning/FaceRequestJson.hpp"
@@ -98,6 +102,27 @@ int runPlanFromFace(const PlanFromFaceOptions& o) {
   std::cout << r.message << "; " << r.iterations << " iterations, " << r.solves << " solves, " << std::setprecision(2)
             << r.seconds << " s; results in " << o.outDir << "\n";
   return r.reached ? 0 : 2;
+}
+
+void addPlanFromFaceCommand(CLI::App& parent) {
+  auto options = std::make_shared<PlanFromFaceOptions>();
+  PlanFromFaceOptions& o = *options;
+  auto* face = parent.add_subcommand(
+      "plan-from-face",
+      "Find the fragment poses that move soft-tissue landmarks where wanted (docs/planning-from-the-face.md)");
+  addCaseArgument(*face, o.casePath, "Surface-based case (JSON)");
+  face->add_option("--targets", o.targetsPath,
+                   "Targets (JSON): {\"targets\": {landmark: {anterior_mm, ...}}, \"locks\": ...}")
+      ->required()
+      ->check(CLI::ExistingFile);
+  face->add_option("--out", o.outDir, "Output folder (report.json, plan.json, skin.obj)")->required();
+  addResolutionOption(*face, o.resolution, "coarse (default) or fine");
+  addCacheFolderOption(*face, o.cacheDir);
+  face->add_option("--translation-limit", o.translationLimitMm, "Largest move of a fragment, mm (default 30)")
+      ->check(CLI::Range(0.1, 100.0));
+  face->add_option("--rotation-limit", o.rotationLimitDeg, "Largest turn of a fragment, degrees (default 30)")
+      ->check(CLI::Range(0.1, 90.0));
+  runWhenChosen(*face, [options] { return runPlanFromFace(*options); });
 }
 
 }  // namespace orthosim::cli

@@ -8,9 +8,13 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cli/BenchCommands.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "eval/Statistics.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "render/CaseView.hpp"
@@ -152,6 +156,20 @@ int runRenderBench(const RenderBenchOptions& opt) {
   fs::remove_all(work);
   if (!opt.jsonPath.empty()) std::ofstream(opt.jsonPath) << rows.dump(2) << "\n";
   return 0;
+}
+
+void addRenderBench(CLI::App& bench) {
+  auto options = std::make_shared<RenderBenchOptions>();
+  RenderBenchOptions& o = *options;
+  auto* render = bench.add_subcommand("render",
+                                      "Time off-screen rendering: orbiting the phantom's predicted face at "
+                                      "coarse and fine resolution (render + read back + JPEG encode)");
+  render->add_option("--frames", o.frames, "Frames per turn around the head")->check(CLI::Range(4, 3600));
+  render->add_option("--width", o.width, "Image width")->check(CLI::Range(16, 8192));
+  render->add_option("--height", o.height, "Image height")->check(CLI::Range(16, 8192));
+  addRepeatsOption(*render, o.repeats, "Turns around the head (medians reported)");
+  addJsonOption(*render, o.jsonPath);
+  runWhenChosen(*render, [options] { return runRenderBench(*options); });
 }
 
 }  // namespace orthosim::cli

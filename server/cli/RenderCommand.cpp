@@ -2,8 +2,12 @@
 // solves the plan and renders the predicted face off-screen (EGL), without a server.
 #include <chrono>
 #include <iostream>
+#include <memory>
 
+#include "cli/CommandLine.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "io/SurfaceImport.hpp"
 #include "render/CaseView.hpp"
 #include "render/ClinicalView.hpp"
@@ -91,6 +95,50 @@ int runRender(const std::string& casePath, const RenderCommandOptions& o) {
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s on "
             << renderer.description() << "; image in " << o.out << "\n";
   return solved.result.converged ? 0 : 2;
+}
+
+void addRenderCommand(CLI::App& parent) {
+  struct Args {
+    std::string casePath;
+    RenderCommandOptions options;
+    CacheOptions cache;
+  };
+  auto args = std::make_shared<Args>();
+  RenderCommandOptions& o = args->options;
+  auto* render =
+      parent.add_subcommand("render", "Solve a case's plan and render the predicted face off-screen (PNG or JPEG)");
+  addCaseArgument(*render, args->casePath);
+  render->add_option("--out", o.out, "Image file: .png or .jpg")->required();
+  addPlanOption(*render, o.planPath,
+                "Plan file {fragment: {translation_mm, rotation_deg, center_mm}} (or {\"plan\": {...}}) "
+                "instead of the case's plan");
+  render->add_option(
+      "--view", o.view,
+      "frontal, profile (right), profile_left, three_quarter (right), three_quarter_left, worms_eye, birds_eye");
+  render->add_option("--width", o.width, "Image width in pixels")->check(CLI::Range(16, 8192));
+  render->add_option("--height", o.height, "Image height in pixels")->check(CLI::Range(16, 8192));
+  render->add_option("--colormap", o.colorMap,
+                     "none (texture), displacement (mm from rest) or difference (vs --reference, else this resolution "
+                     "vs the other, mm)");
+  render
+      ->add_option("--reference", o.reference,
+                   "With --colormap difference: a surface (OBJ, STL, PLY; "
+                   "the case's frame, mm) to measure the predicted skin against, e.g. a scan")
+      ->check(CLI::ExistingFile);
+  render
+      ->add_option("--scale-mm", o.scaleMm,
+                   "Colour scale: displacement maximum or difference range (default 10 and 3 mm)")
+      ->check(CLI::PositiveNumber);
+  addResolutionOption(*render, o.resolution, "coarse (preview) or fine (confirm)");
+  addCacheOptions(*render, args->cache);
+  render->add_flag("--bones", o.bones, "Draw the bone fragments at their planned poses");
+  render->add_option("--skin-opacity", o.skinOpacity, "Below 1: translucent skin over the bones")
+      ->check(CLI::Range(0.05, 1.0));
+  render->add_flag("--before-after", o.beforeAfter, "Rest (left) and predicted (right) side by side");
+  runWhenChosen(*render, [args] {
+    args->options.cacheDir = args->cache.folder();
+    return runRender(args->casePath, args->options);
+  });
 }
 
 }  // namespace orthosim::cli

@@ -9,10 +9,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "cli/BenchCommands.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "eval/Statistics.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "phantom/PhantomCt.hpp"
@@ -107,6 +111,18 @@ int runScanBench(const ScanBenchOptions& opt) {
   }
   fs::remove_all(work);
   return 0;
+}
+
+void addScanBench(CLI::App& bench) {
+  auto options = std::make_shared<ScanBenchOptions>();
+  auto* scan =
+      bench.add_subcommand("scan", "Time a CT series (the phantom scanned) to a plannable case and its preview");
+  scan->add_option("--size", options->size, "The CT's voxels i j k (default 512 512 300)")
+      ->expected(3)
+      ->check(CLI::Range(32, 1024));
+  addRepeatsOption(*scan, options->repeats, "Runs (medians reported)");
+  addJsonOption(*scan, options->jsonPath);
+  runWhenChosen(*scan, [options] { return runScanBench(*options); });
 }
 
 }  // namespace orthosim::cli

@@ -2,8 +2,12 @@
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
+#include <memory>
 
+#include "cli/CommandLine.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "jobs/ReplicaClaim.hpp"
 #include "net/Server.hpp"
 #include "net/TokenFile.hpp"
@@ -95,6 +99,85 @@ int runServe(const ServeOptions& options) {
     std::cerr << "orthosim serve: " << e.what() << "\n";
     return 1;
   }
+}
+
+namespace {
+
+// Where the server listens, what it serves, and who may reach it.
+void addServeAccessOptions(CLI::App& serve, ServeOptions& o) {
+  serve.add_option("--host", o.host, "Address to bind (default 127.0.0.1: this machine only)");
+  serve.add_option("--port", o.port, "TCP port; 0 picks a free one")->check(CLI::Range(0, 65535));
+  serve.add_option("--web", o.webDir, "Folder of the browser page (default: the source tree's web/)");
+  addDataOption(serve, o.dataDir,
+                "Folder for built cases, the mesh cache and saved plans (default: $ORTHOSIM_DATA, else "
+                "~/.local/share/orthosim)");
+  serve.add_option("--cases", o.casesDir, "Folder of case folders (DIR/<id>/case.json) to serve besides the phantom");
+  serve.add_option("--builtin-cases", o.builtinDir,
+                   "Folder of the shipped cases (default: the source tree's cases/; holds the ArtiSynth face)");
+  serve.add_option("--token", o.token, "Access token required on /api and /ws (default: $ORTHOSIM_TOKEN)");
+  serve.add_option("--token-file", o.tokenFile,
+                   "Without --token or $ORTHOSIM_TOKEN: read the token from this file, or write a random one there");
+  serve.add_flag("--insecure", o.insecure,
+                 "Allow a --host other than the loopback without a token (anyone who reaches the port can plan)");
+  serve.add_option("--allow-origin", o.allowedOrigins,
+                   "Origin (e.g. http://planning.example:8080) whose pages may open the WebSocket; '*' allows any");
+  serve.add_option("--allow-host", o.allowedHosts,
+                   "Host name clients may use besides localhost, addresses and this machine's name (\"*\": any)");
+}
+
+// How much work the server takes on at once, and for how long.
+void addServeLimitOptions(CLI::App& serve, ServeOptions& o) {
+  serve.add_option("--fine-workers", o.fineWorkers, "Fine jobs run at once")->check(CLI::Range(1, 16));
+  serve.add_option("--max-sessions", o.maxSessions, "Planning sessions open at once")->check(CLI::Range(1, 1024));
+  serve
+      .add_option("--preview-iterations", o.previewIterations,
+                  "Newton iterations one coarse preview may spend (beyond: refused, the last good preview kept)")
+      ->check(CLI::Range(1, 10000));
+  serve.add_option("--preview-seconds", o.previewSeconds, "Seconds one coarse preview may take")
+      ->check(CLI::Range(0.1, 3600.0));
+  serve
+      .add_option("--unopened-timeout", o.unopenedTimeoutSeconds,
+                  "Seconds a session may stay without opening a case before it is closed")
+      ->check(CLI::Range(1, 86400));
+  serve.add_flag("!--no-warm-up", o.warmUp, "Do not build the phantom's coarse model at start");
+  serve.add_option("--max-upload-mb", o.maxUploadMb, "Largest patient upload (POST /api/patients), MiB")
+      ->check(CLI::Range(1, 4096));
+  serve
+      .add_option("--max-uploads", o.maxUploads,
+                  "Uploads (POST /api/patients, /api/scans) received or imported at once; more get 503")
+      ->check(CLI::Range(1, 256));
+  serve
+      .add_option("--scan-expiry", o.scanExpirySeconds,
+                  "Seconds a scan staged for import (POST /api/scans) is kept unused before it is removed")
+      ->check(CLI::Range(1, 86400));
+  serve.add_option("--max-staged-scans", o.maxStagedScans, "Scans staged for import at once")->check(CLI::Range(1, 64));
+}
+
+// Fine jobs on `orthosim worker` processes through Redis.
+void addServeRedisOptions(CLI::App& serve, ServeOptions& o) {
+  serve.add_option("--redis", o.redis,
+                   "redis://HOST:PORT: fine jobs go to `orthosim worker` processes through Redis Streams "
+                   "(default: run them in this process)");
+  serve.add_option("--replica", o.replica,
+                   "With --redis: this server's name there, the same after a restart so that its queued jobs "
+                   "are found again; one per running server (default: HOST-PORT)");
+  serve
+      .add_option("--orphan-grace", o.orphanGraceSeconds,
+                  "With --redis: seconds a fine job whose session is gone waits for a session to resume it")
+      ->check(CLI::Range(1, 86400));
+}
+
+}  // namespace
+
+void addServeCommand(CLI::App& parent) {
+  auto options = std::make_shared<ServeOptions>();
+  options->webDir = ORTHOSIM_WEB_DIR;
+  options->builtinDir = ORTHOSIM_CASES_DIR;
+  auto* serve = parent.add_subcommand("serve", "Serve the planning API and the browser page over HTTP");
+  addServeAccessOptions(*serve, *options);
+  addServeLimitOptions(*serve, *options);
+  addServeRedisOptions(*serve, *options);
+  runWhenChosen(*serve, [options] { return runServe(*options); });
 }
 
 }  // namespace orthosim::cli

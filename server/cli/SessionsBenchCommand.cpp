@@ -15,8 +15,11 @@
 #include <vector>
 
 #include "cli/BenchClient.hpp"
+#include "cli/BenchCommands.hpp"
 #include "cli/BenchServer.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "eval/Statistics.hpp"
 
 namespace orthosim::cli {
@@ -77,6 +80,24 @@ int runSessionsBench(const SessionsBenchOptions& options) {
     status = 1;
   }
   return status;
+}
+
+void addSessionsBench(CLI::App& bench) {
+  auto options = std::make_shared<SessionsBenchOptions>();
+  SessionsBenchOptions& o = *options;
+  o.webDir = ORTHOSIM_WEB_DIR;
+  auto* sessions = bench.add_subcommand(
+      "sessions", "Resident memory with 1, 4 and 16 planning sessions open on the phantom, and the open time");
+  sessions->add_option("--counts", o.counts, "Session counts to read the memory at (increasing)")
+      ->check(CLI::Range(1, 64));
+  addDataOption(*sessions, o.dataDir, "Data folder (phantom and mesh cache, reused)");
+  addVariantOption(*sessions, o.phantomVariant);
+  addJsonOption(*sessions, o.jsonPath);
+  runWhenChosen(*sessions, [options] {
+    if (!std::is_sorted(options->counts.begin(), options->counts.end()))
+      throw std::invalid_argument("--counts: session counts must increase");
+    return runSessionsBench(*options);
+  });
 }
 
 }  // namespace orthosim::cli

@@ -1,7 +1,11 @@
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
+#include "cli/CommandLine.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "eval/ResultJson.hpp"
 #include "io/SurfaceImport.hpp"
 #include "io/TetgenIO.hpp"
@@ -100,6 +104,27 @@ int runSolve(const std::string& scenePath, const std::string& outDir, const Solv
     return 2;
   }
   return 0;
+}
+
+void addSolveCommand(CLI::App& parent) {
+  struct Args {
+    std::string scene, out;
+    SolveOptions options;
+    CacheOptions cache;
+  };
+  auto args = std::make_shared<Args>();
+  auto* solve = parent.add_subcommand(
+      "solve", "Solve a scene or surface-based case (JSON); write deformed nodes, skin and result.json");
+  solve->add_option("scene", args->scene, "Scene or case file (JSON, see docs/scene-format.md)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  solve->add_option("--out", args->out, "Output folder")->required();
+  addResolutionOption(*solve, args->options.resolution, "Surface cases: coarse (preview) or fine (confirm)");
+  addCacheOptions(*solve, args->cache);
+  runWhenChosen(*solve, [args] {
+    args->options.cacheDir = args->cache.folder();
+    return runSolve(args->scene, args->out, args->options);
+  });
 }
 
 }  // namespace orthosim::cli

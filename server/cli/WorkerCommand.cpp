@@ -3,9 +3,13 @@
 
 #include <csignal>
 #include <iostream>
+#include <memory>
 #include <thread>
 
+#include "cli/CommandLine.hpp"
+#include "cli/CommandRun.hpp"
 #include "cli/Commands.hpp"
+#include "cli/SharedOptions.hpp"
 #include "jobs/RedisWorker.hpp"
 #include "session/DataFolderLeftovers.hpp"
 #include "session/DataFolderLock.hpp"
@@ -54,6 +58,28 @@ int runWorker(const WorkerOptions& options) {
     std::cerr << "orthosim worker: " << e.what() << "\n";
     return 1;
   }
+}
+
+void addWorkerCommand(CLI::App& parent) {
+  auto options = std::make_shared<WorkerOptions>();
+  WorkerOptions& o = *options;
+  o.builtinDir = ORTHOSIM_CASES_DIR;
+  auto* worker = parent.add_subcommand(
+      "worker",
+      "Run fine, band and cohort jobs from Redis Streams (serve --redis, bench cohort --redis) on this machine");
+  worker->add_option("--redis", o.redis, "redis://HOST:PORT, the same as the servers'")->required();
+  addDataOption(*worker, o.dataDir,
+                "The servers' data folder (shared: cases, mesh cache, results; default: $ORTHOSIM_DATA, else "
+                "~/.local/share/orthosim)");
+  worker->add_option("--cases", o.casesDir, "The servers' --cases folder, if they use one");
+  worker->add_option("--builtin-cases", o.builtinDir, "The servers' --builtin-cases folder");
+  worker->add_option("--concurrency", o.concurrency, "Jobs at once")->check(CLI::Range(1, 64));
+  worker
+      ->add_option("--visibility-timeout", o.visibilitySeconds,
+                   "Seconds after which a job whose worker stopped (died) goes to another worker (default 60)")
+      ->check(CLI::Range(0.5, 86400.0));
+  worker->add_option("--name", o.name, "Name of this worker in Redis (default: HOST-PID)");
+  runWhenChosen(*worker, [options] { return runWorker(*options); });
 }
 
 }  // namespace orthosim::cli

@@ -5,7 +5,6 @@
 #include "eval/SkinFigures.hpp"
 #include "jobs/SolveFiguresJson.hpp"
 #include "solver/Model.hpp"
-#include "solver/NewtonSolver.hpp"
 #include "solver/PlanSolver.hpp"
 
 namespace orthosim::server {
@@ -35,7 +34,7 @@ std::optional<FineSolve> runFineJob(long long job, CaseLibrary& cases, const std
   control.onProgress = [&](const SolveProgress& p) { progress("solve", 0.4 + 0.6 * p.loadFraction); };
   const SimState rest = model.restState();
   const SolveResult result = solvePlan(model, rest, model.targetsFromPlan(plan, rest), model.scene().solver, control);
-  if (result.error == kCancelled) return cancelled("solve");
+  if (result.outcome == SolveOutcome::cancelled) return cancelled("solve");
   json figures = solveFiguresJson(*fine, SkinFigureProbe(*fine), result, fine->spec.frame);
   figures["time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!result.converged) {

@@ -14,6 +14,7 @@
 #include "cases/CaseLibrary.hpp"
 #include "jobs/BandJobMessage.hpp"
 #include "jobs/FineJob.hpp"
+#include "jobs/JobKind.hpp"
 #include "jobs/JobQueue.hpp"
 
 namespace orthosim::server {
@@ -31,9 +32,9 @@ struct FineJobRequest {
   // What the session needs to publish the outcome (its poses), handed back when another session
   // takes the job over (resume); kept with the job, never read by the queue.
   nlohmann::json context = nlohmann::json::object();
-  // Another kind of job on the same queue (RedisFineJobs only: `serve --redis`): "band", at
+  // Another kind of job on the same queue (RedisFineJobs only: `serve --redis`): a band, at
   // `resolution`, with its options (jobs/BandJobMessage).
-  std::string kind = "fine";
+  JobKind kind = JobKind::fine;
   Resolution resolution = Resolution::Fine;
   std::optional<BandJobSpec> band;
 };
@@ -41,7 +42,7 @@ struct FineJobRequest {
 struct FineJobCallbacks {
   JobReport report;                                    // job_progress, job_cancelled, job_failed
   std::function<void(long long job, FineSolve)> done;  // the converged solve
-  // Set for a job of another kind than "fine": called instead of `done` with the worker's job_done
+  // Set for a job of another kind than fine: called instead of `done` with the worker's job_done
   // message (its result file, relative to the data folder, in "result"), off the relay thread.
   std::function<void(long long job, nlohmann::json reply)> doneReply;
 };

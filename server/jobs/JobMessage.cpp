@@ -86,7 +86,7 @@ std::string encodeJobMessage(const JobMessage& job) {
         {"translation_mm", vec(m.translation)}, {"rotation_rad", vec(m.rotation)}, {"center_mm", vec(m.center)}};
   json j{{"format", kJobFormat},
          {"job", job.job},
-         {"kind", job.kind},
+         {"kind", jobKindWord(job.kind)},
          {"case", job.caseId},
          {"case_hash", job.caseHash},
          {"resolution", resolutionName(job.resolution)},
@@ -117,17 +117,18 @@ JobMessage decodeJobMessage(const std::string& text) {
   JobMessage m;
   m.job = readString(j, "job");
   if (!isJobName(m.job)) throw BadJobMessage("/job: '" + m.job + "' is not a job name (letters, digits, - and _)");
-  m.kind = readString(j, "kind");
-  if (m.kind != "fine" && m.kind != "band" && m.kind != "cohort")
-    throw BadJobMessage("/kind: '" + m.kind + "' is not a job kind this worker runs (fine, band, cohort)");
-  if (j.contains("band") != (m.kind == "band"))
-    throw BadJobMessage(m.kind == "band" ? "/band: required field is missing"
-                                         : "/band: only a band job has band options");
-  if (j.contains("cohort") != (m.kind == "cohort"))
-    throw BadJobMessage(m.kind == "cohort" ? "/cohort: required field is missing"
-                                           : "/cohort: only a cohort job has cohort options");
-  if (m.kind == "band") m.band = readBandJobSpec(j["band"], "/band");
-  if (m.kind == "cohort") m.cohort = readCohortJobSpec(j["cohort"], "/cohort");
+  const std::string kind = readString(j, "kind");
+  const std::optional<JobKind> known = jobKindOfWord(kind);
+  if (!known) throw BadJobMessage("/kind: '" + kind + "' is not a job kind this worker runs (fine, band, cohort)");
+  m.kind = *known;
+  const bool band = m.kind == JobKind::band, cohort = m.kind == JobKind::cohort;
+  if (j.contains("band") != band)
+    throw BadJobMessage(band ? "/band: required field is missing" : "/band: only a band job has band options");
+  if (j.contains("cohort") != cohort)
+    throw BadJobMessage(cohort ? "/cohort: required field is missing"
+                               : "/cohort: only a cohort job has cohort options");
+  if (band) m.band = readBandJobSpec(j["band"], "/band");
+  if (cohort) m.cohort = readCohortJobSpec(j["cohort"], "/cohort");
   m.caseId = readString(j, "case");
   if (!isIdentifier(m.caseId)) throw BadJobMessage("/case: '" + m.caseId + "' is not a case identifier");
   m.caseHash = readString(j, "case_hash");
@@ -162,7 +163,7 @@ JobMessage decodeJobMessage(const std::string& text) {
     f.center = readVec(motion["center_mm"], where + "/center_mm");
     m.plan[name] = f;
   }
-  if (m.kind == "cohort" && !m.plan.empty())
+  if (m.kind == JobKind::cohort && !m.plan.empty())
     throw BadJobMessage("/plan: a cohort job's plan is its patient's (must be empty)");
   return m;
 }

@@ -22,6 +22,7 @@
 
 #include "jobs/BandJobMessage.hpp"
 #include "jobs/CohortJobMessage.hpp"
+#include "jobs/JobKind.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/Scene.hpp"
 
@@ -36,15 +37,15 @@ class BadJobMessage : public std::invalid_argument {
 };
 
 struct JobMessage {
-  std::string job;            // unique over servers: "<server id>-<n>"
-  std::string kind = "fine";  // "fine", "band", "cohort"
+  std::string job;  // unique over servers: "<server id>-<n>"
+  JobKind kind = JobKind::fine;
   std::string caseId;
   std::string caseHash;  // caseContentHash() of the case the server planned on
   Resolution resolution = Resolution::Fine;
   std::string replyStream;  // where progress and the outcome go
   std::map<std::string, FragmentMotion> plan;
-  std::optional<BandJobSpec> band;      // kind "band" only
-  std::optional<CohortJobSpec> cohort;  // kind "cohort" only
+  std::optional<BandJobSpec> band;      // JobKind::band only
+  std::optional<CohortJobSpec> cohort;  // JobKind::cohort only
 };
 
 std::string encodeJobMessage(const JobMessage& job);

@@ -19,18 +19,18 @@
 // is cancelled, which the server log says. Without a replica name (port 0, tests) the server
 // draws a random one and a stop cancels its jobs, as the in-process pool does.
 #include <atomic>
-#include <boost/asio/thread_pool.hpp>
 #include <chrono>
 #include <filesystem>
-#include <map>
-#include <memory>
-#include <mutex>
-#include <thread>
+#include <optional>
+#include <string>
 
+#include "jobs/CommandConnection.hpp"
 #include "jobs/FineJobs.hpp"
-#include "jobs/JobNumbers.hpp"
-#include "jobs/RedisConnection.hpp"
+#include "jobs/JobOutcomes.hpp"
+#include "jobs/JobRegistry.hpp"
+#include "jobs/JobSubmission.hpp"
 #include "jobs/ReplicaClaim.hpp"
+#include "jobs/ReplyRelay.hpp"
 
 namespace orthosim::server {
 
@@ -63,60 +63,17 @@ class RedisFineJobs : public FineJobs {
   const std::string& serverId() const { return serverId_; }
 
  private:
-  struct Job {
-    long long id;
-    std::string name;  // "<server id>-<id>" on the stream
-    std::string owner;
-    std::string caseId;
-    std::string kind = "fine";  // only fine jobs outlive their session (band jobs are cancelled)
-    std::string entry;          // stream entry id
-    bool started = false;
-    nlohmann::json context;
-    std::shared_ptr<FineJobCallbacks> callbacks;                       // null while no session listens
-    std::optional<std::chrono::steady_clock::time_point> orphanSince;  // its session is gone
-    nlohmann::json progress;                                           // the newest job_progress
-    std::optional<nlohmann::json> outcome;  // done, failed or cancelled while nobody listened
-  };
-  void relay();
-  void handleReply(const std::string& text);
-  // The outcome to the job's session, and its record forgotten.
-  void deliver(Job job, nlohmann::json reply);
-  void finishDone(Job job, nlohmann::json reply);
-  void failAll(const std::string& why);
-  void adoptRecords();          // the previous run's jobs, each an orphan
-  void cancelExpiredOrphans();  // nobody resumed them within the grace
-  void forget(const Job& job);  // its record, when the replica keeps records
-  // With commandMutex_ held: the submit/cancel connection, connected again when it was lost.
-  // Throws RedisUnavailable at once while the relay finds Redis unreachable.
-  RedisConnection& commands();
-  // With commandMutex_ held: `run` on commands(); when that connection proves dead (broken at once,
-  // as after a Redis restart, not timed out), once more on a new one. Only for commands that may
-  // run twice (a number skipped, a key set twice).
-  template <class Run>
-  auto retryingOnce(const Run& run);
-  bool setCancel(const Job& job);  // with commandMutex_ held; false when Redis cannot be reached
-
-  RedisAddress address_;
-  CaseLibrary& cases_;
-  std::filesystem::path dataDir_;
-  const int capacity_;
+  // The parts, each with its own file: the command connection they share, the jobs out and their
+  // orphans, the outcomes to sessions, submission, and the reply relay (started last).
   const RedisJobsOptions options_;
-  const bool durable_;  // a replica name: jobs outlive sessions and this process
-  std::string serverId_;
-  std::optional<ReplicaClaim> claim_;
-  std::string replyStream_;
-
-  std::mutex commandMutex_;
-  std::unique_ptr<RedisConnection> commands_;
-  JobNumbers numbers_;                 // with commandMutex_ held
-  std::atomic<bool> reachable_{true};  // false from the relay losing Redis until it answers again
-
-  mutable std::mutex mutex_;
-  std::map<long long, Job> jobs_;  // by job number (numbers_)
-
+  const std::string serverId_;
+  CommandConnection commands_;
+  std::optional<ReplicaClaim> claim_;  // with a replica name
+  JobRegistry registry_;
+  JobOutcomes outcomes_;
+  JobSubmission submission_;
+  std::optional<ReplyRelay> relay_;
   std::atomic<bool> stopping_{false};
-  std::thread relay_;
-  boost::asio::thread_pool finishing_{1};  // loads converged results off the relay thread
 };
 
 }  // namespace orthosim::server

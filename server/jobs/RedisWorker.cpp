@@ -185,12 +185,12 @@ void RedisWorker::handle(RedisConnection& redis, const std::string& consumer, co
     return;
   }
   try {
-    if (job.kind != "cohort") checkCase(job);  // a cohort job's case is written by runCohortOnWorker
+    if (job.kind != JobKind::cohort) checkCase(job);  // a cohort job's case is written by runCohortOnWorker
   } catch (const std::exception& e) {
     refuse(redis, entryId, job.replyStream, job.job, e.what());
     return;
   }
-  say(job.kind + " job " + job.job + ": case " + job.caseId + " on " + consumer);
+  say(std::string(jobKindWord(job.kind)) + " job " + job.job + ": case " + job.caseId + " on " + consumer);
 
   std::atomic<bool> cancel{false}, abandoned{false}, finished{false}, replyLost{false};
   // Cancel key and keeping the entry: on its own connection, so the solve is never waited on.
@@ -228,12 +228,17 @@ void RedisWorker::handle(RedisConnection& redis, const std::string& consumer, co
   std::optional<json> done;  // the job_done message, its result written
   std::string failure;
   try {
-    if (job.kind == "band")
-      done = runBandOnWorker(job, cases_, options_.dataDir, cancel, report);
-    else if (job.kind == "cohort")
-      done = runCohortOnWorker(job, options_.dataDir, consumer);
-    else
-      done = runFine(job, cancel, report);
+    switch (job.kind) {
+      case JobKind::band:
+        done = runBandOnWorker(job, cases_, options_.dataDir, cancel, report);
+        break;
+      case JobKind::cohort:
+        done = runCohortOnWorker(job, options_.dataDir, consumer);
+        break;
+      case JobKind::fine:
+        done = runFine(job, cancel, report);
+        break;
+    }
   } catch (const std::exception& e) {
     failure = e.what();
   }
@@ -246,8 +251,9 @@ void RedisWorker::handle(RedisConnection& redis, const std::string& consumer, co
   if (replyLost) throw RedisUnavailable("lost Redis at " + options_.redis.text + " during job " + job.job);
   if (!failure.empty()) {
     say("job " + job.job + " failed: " + failure);
-    json failed = {{"type", "job_failed"}, {"message", "the " + job.kind + " job failed: " + failure}};
-    if (job.kind != "fine") failed["kind"] = job.kind;
+    const std::string kind = jobKindWord(job.kind);
+    json failed = {{"type", "job_failed"}, {"message", "the " + kind + " job failed: " + failure}};
+    if (job.kind != JobKind::fine) failed["kind"] = kind;
     report(failed);
   } else if (!done && cancel) {
     say("job " + job.job + " cancelled");

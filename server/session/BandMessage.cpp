@@ -9,7 +9,7 @@
 #include "io/SurfaceImport.hpp"
 #include "jobs/BandJob.hpp"
 #include "jobs/BandResultFile.hpp"
-#include "session/PlanningSession.hpp"
+#include "session/JobHandler.hpp"
 #include "session/SkinExport.hpp"
 
 namespace orthosim::server {
@@ -24,15 +24,8 @@ Resolution bandResolution(const std::string& name) {
 
 }  // namespace
 
-struct PlanningSession::BandResult {
-  long long job = 0;
-  std::string caseId;
-  std::string resolution;
-  SkinEnvelope envelope;
-};
-
-void PlanningSession::band(MessageReader& r, const json& id) {
-  const PlanSnapshot s = planSnapshot();
+void JobHandler::band(MessageReader& r, const json& id) {
+  const PlanSnapshot s = state_.planSnapshot();
   const std::string resolutionName = r.has("resolution") ? r.string("resolution") : "coarse";
   BandOptions options;
   options.design.rangeScale = r.number("range_scale", 1.0, 0.01, 2.0, "(times the default ranges)");
@@ -47,114 +40,111 @@ void PlanningSession::band(MessageReader& r, const json& id) {
   } catch (const std::invalid_argument& e) {
     throw ProtocolError("bad_value", std::string("/range_scale: ") + e.what(), "/range_scale");
   }
-  auto self = shared_from_this();
-  if (service_.redisJobs()) {  // `serve --redis`: on the workers, as the fine jobs
+  if (!services_.options.redisUrl.empty()) {  // `serve --redis`: on the workers, as the fine jobs
     submitRedisBand(s, resolution, options, solves, id);
     return;
   }
-  const std::optional<long long> job = service_.localJobs().submit(
-      id_,
-      [self, s, resolution, options](long long job, const std::atomic<bool>& cancel) {
-        self->runBand(job, s.caseId, resolution, s.plan, s.poses, options, cancel);
+  const std::optional<long long> job = services_.localJobs.submit(
+      owner_,
+      [this, keep = channel_.keepAlive(), s, resolution, options](long long job, const std::atomic<bool>& cancel) {
+        runBand(job, s, resolution, options, cancel);
       },
-      [self](long long job) {
-        self->reply({{"type", "job_cancelled"}, {"job", job}, {"kind", "band"}, {"phase", "queued"}}, nullptr);
+      [this, keep = channel_.keepAlive()](long long job) {
+        channel_.reply({{"type", "job_cancelled"}, {"job", job}, {"kind", "band"}, {"phase", "queued"}}, nullptr);
       });
   if (!job) throw ProtocolError("busy", "the job queue is full; try again when a job has finished");
-  reply({{"type", "job_queued"},
-         {"job", *job},
-         {"kind", "band"},
-         {"case", s.caseId},
-         {"resolution", resolutionName},
-         {"solves", solves},
-         {"position", service_.localJobs().position(*job).value_or(0)}},
-        id);
+  channel_.reply({{"type", "job_queued"},
+                  {"job", *job},
+                  {"kind", "band"},
+                  {"case", s.caseId},
+                  {"resolution", resolutionName},
+                  {"solves", solves},
+                  {"position", services_.localJobs.position(*job).value_or(0)}},
+                 id);
 }
 
-void PlanningSession::submitRedisBand(const PlanSnapshot& s, Resolution resolution, const BandOptions& options,
-                                      size_t solves, const json& id) {
-  auto self = shared_from_this();
+void JobHandler::submitRedisBand(const PlanSnapshot& s, Resolution resolution, const BandOptions& options,
+                                 size_t solves, const json& id) {
   FineJobCallbacks callbacks;
-  callbacks.report = [self](json message) {
+  callbacks.report = [this, keep = channel_.keepAlive()](json message) {
     message["kind"] = "band";
-    self->reply(std::move(message), nullptr);
+    channel_.reply(std::move(message), nullptr);
   };
-  const std::filesystem::path dataDir = service_.options().dataDir;
-  callbacks.doneReply = [self, s, resolution, dataDir](long long job, json reply) {
+  const std::filesystem::path dataDir = services_.options.dataDir;
+  callbacks.doneReply = [this, keep = channel_.keepAlive(), s, resolution, dataDir](long long job, json reply) {
     const std::filesystem::path file = dataDir / reply.value("result", std::string());
     try {
       BandOutcome outcome = readBandResult(file);
       std::error_code ignored;
       std::filesystem::remove(file, ignored);  // the session holds it now
-      self->publishBand(job, s.caseId, resolution, s.poses, std::move(outcome));
+      publishBand(job, s.caseId, resolution, s.poses, std::move(outcome));
     } catch (const std::exception& e) {
-      self->reply({{"type", "job_failed"},
-                   {"job", job},
-                   {"kind", "band"},
-                   {"message", std::string("the band job's result cannot be used: ") + e.what()}},
-                  nullptr);
+      channel_.reply({{"type", "job_failed"},
+                      {"job", job},
+                      {"kind", "band"},
+                      {"message", std::string("the band job's result cannot be used: ") + e.what()}},
+                     nullptr);
     }
   };
   FineJobRequest request;
-  request.owner = id_;
+  request.owner = owner_;
   request.caseId = s.caseId;
   request.plan = s.plan;
-  request.kind = "band";
+  request.kind = JobKind::band;
   request.resolution = resolution;
   request.band = bandJobSpecOf(options);
   std::optional<SubmittedJob> job;
   try {
-    job = service_.fineJobs().submit(std::move(request), std::move(callbacks));
+    job = services_.fineJobs.submit(std::move(request), std::move(callbacks));
   } catch (const JobsUnavailable& e) {
     throw ProtocolError("jobs_unavailable", e.what());
   }
   if (!job) throw ProtocolError("busy", "the job queue is full; try again when a job has finished");
-  reply({{"type", "job_queued"},
-         {"job", job->job},
-         {"kind", "band"},
-         {"case", s.caseId},
-         {"resolution", resolutionName(resolution)},
-         {"solves", solves},
-         {"position", job->position}},
-        id);
+  channel_.reply({{"type", "job_queued"},
+                  {"job", job->job},
+                  {"kind", "band"},
+                  {"case", s.caseId},
+                  {"resolution", resolutionName(resolution)},
+                  {"solves", solves},
+                  {"position", job->position}},
+                 id);
 }
 
-void PlanningSession::runBand(long long job, const std::string& caseId, Resolution resolution,
-                              const std::map<std::string, FragmentMotion>& plan, const json& poses,
-                              const BandOptions& options, const std::atomic<bool>& cancel) {
+void JobHandler::runBand(long long job, const PlanSnapshot& s, Resolution resolution, const BandOptions& options,
+                         const std::atomic<bool>& cancel) {
   try {
-    const JobReport report = [this](json message) { reply(std::move(message), nullptr); };
+    const JobReport report = [this](json message) { channel_.reply(std::move(message), nullptr); };
     std::optional<BandSolve> solved =
-        runBandJob(job, service_.cases(), caseId, resolution, plan, options, cancel, report);
+        runBandJob(job, services_.cases, s.caseId, resolution, s.plan, options, cancel, report);
     if (!solved) return;
-    publishBand(job, caseId, resolution, poses, bandOutcome(solved->band, solved->seconds));
+    publishBand(job, s.caseId, resolution, s.poses, bandOutcome(solved->band, solved->seconds));
   } catch (const std::exception& e) {
-    reply({{"type", "job_failed"},
-           {"job", job},
-           {"kind", "band"},
-           {"message", std::string("the band job failed: ") + e.what()}},
-          nullptr);
+    channel_.reply({{"type", "job_failed"},
+                    {"job", job},
+                    {"kind", "band"},
+                    {"message", std::string("the band job failed: ") + e.what()}},
+                   nullptr);
   }
 }
 
 // A finished band, from this machine's pool or a worker: band_done, and the view's band.
-void PlanningSession::publishBand(long long job, const std::string& caseId, Resolution resolution, const json& poses,
-                                  BandOutcome b) {
+void JobHandler::publishBand(long long job, const std::string& caseId, Resolution resolution, const json& poses,
+                             BandOutcome b) {
   auto done = std::make_shared<BandResult>(BandResult{job, caseId, resolutionName(resolution), b.envelope});
   std::shared_ptr<SessionView> view;
   bool sameCase = false;
   int viewVertices = 0;  // of the open case's display skin
   try {
-    const PlanSnapshot open = planSnapshot();
+    const PlanSnapshot open = state_.planSnapshot();
     sameCase = open.caseId == caseId;
     viewVertices = open.coarse->tissue.skin.numVertices();
   } catch (const ProtocolError&) {  // closed or another case opening: nothing to show it on
   }
   {
-    const std::lock_guard<std::mutex> lock(mutex_);
+    const std::lock_guard<std::mutex> lock(state_.mutex);
     if (sameCase) {
-      band_ = done;
-      view = view_;
+      state_.band = done;
+      view = state_.view;
     }
   }
   json message = {{"type", "band_done"}, {"job", job},
@@ -174,12 +164,12 @@ void PlanningSession::publishBand(long long job, const std::string& caseId, Reso
     view->postBand(std::move(skins));
   }
   message["view"] = shown;
-  reply(std::move(message), nullptr);
-  if (shown) requestFrame();
+  channel_.reply(std::move(message), nullptr);
+  if (shown) frames_.requestFrame();
 }
 
-void PlanningSession::bandView(MessageReader& r, const json& id) {
-  const std::string caseId = openCaseId();
+void JobHandler::bandView(MessageReader& r, const json& id) {
+  const std::string caseId = state_.openCaseId();
   const std::string surface = r.string("surface");
   r.rejectUnknown();
   if (surface != "low" && surface != "high" && surface != "nominal" && surface != "off")
@@ -187,21 +177,21 @@ void PlanningSession::bandView(MessageReader& r, const json& id) {
   std::shared_ptr<SessionView> v;
   long long job = 0;
   {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    if (!band_ || band_->caseId != caseId)
+    const std::lock_guard<std::mutex> lock(state_.mutex);
+    if (!state_.band || state_.band->caseId != caseId)
       throw ProtocolError("no_band", "there is no prediction band of case '" + caseId + "' yet: send 'band' first");
-    v = view_;
-    job = band_->job;
+    v = state_.view;
+    job = state_.band->job;
   }
   if (v) {
     v->postBandSurface(surface);
-    requestFrame();
+    frames_.requestFrame();
   }
-  reply({{"type", "band_view"}, {"surface", surface}, {"job", job}}, id);
+  channel_.reply({{"type", "band_view"}, {"surface", surface}, {"job", job}}, id);
 }
 
-void PlanningSession::exportBand(MessageReader& r, const json& id) {
-  const std::string caseId = openCaseId();
+void JobHandler::exportBand(MessageReader& r, const json& id) {
+  const std::string caseId = state_.openCaseId();
   const std::string surface = r.string("surface");
   const std::string format = skinExportFormat(r.string("format"));
   r.rejectUnknown();
@@ -209,22 +199,21 @@ void PlanningSession::exportBand(MessageReader& r, const json& id) {
     throw ProtocolError("bad_value", "/surface: '" + surface + "' is not one of low, high, nominal", "/surface");
   std::shared_ptr<const BandResult> done;
   {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    if (band_ && band_->caseId == caseId) done = band_;
+    const std::lock_guard<std::mutex> lock(state_.mutex);
+    if (state_.band && state_.band->caseId == caseId) done = state_.band;
   }
   if (!done)
     throw ProtocolError("no_band", "there is no prediction band of case '" + caseId + "' yet: send 'band' first");
-  auto self = shared_from_this();
   work_.submit(
-      [self, done, surface, format, id](const std::atomic<bool>&) {
+      [this, keep = channel_.keepAlive(), done, surface, format, id](const std::atomic<bool>&) {
         try {
           const SurfaceMesh& mesh = surface == "low"    ? done->envelope.lowSurface()
                                     : surface == "high" ? done->envelope.highSurface()
                                                         : done->envelope.nominal;
-          self->offerExport(surfaceExportFile(mesh, done->caseId + "-band-" + surface + "-" + done->resolution, format),
-                            {{"format", format}, {"result", "band_" + surface}, {"job", done->job}}, id);
+          exports_.offer(surfaceExportFile(mesh, done->caseId + "-band-" + surface + "-" + done->resolution, format),
+                         {{"format", format}, {"result", "band_" + surface}, {"job", done->job}}, id);
         } catch (const std::exception& e) {
-          self->sendError("export_failed", std::string("export failed: ") + e.what(), "", id);
+          channel_.sendError("export_failed", std::string("export failed: ") + e.what(), "", id);
         }
       },
       SerialWork::Kind::Ordered);

@@ -5,7 +5,7 @@
 
 #include "cases/CaseEdit.hpp"
 #include "scene/LandmarkName.hpp"
-#include "session/PlanningSession.hpp"
+#include "session/CaseHandler.hpp"
 
 namespace orthosim::server {
 using nlohmann::json;
@@ -49,9 +49,9 @@ std::vector<CutChoice> readCuts(const MessageReader& r, const json& j) {
 
 }  // namespace
 
-void PlanningSession::editCase(MessageReader& r, const json& id) {
-  const std::string caseId = openCaseId();
-  const std::optional<CaseEntry> entry = service_.cases().find(caseId);
+void CaseHandler::editCase(MessageReader& r, const json& id) {
+  const std::string caseId = state_.openCaseId();
+  const std::optional<CaseEntry> entry = cases_.find(caseId);
   if (!entry || entry->source != "import")
     throw ProtocolError("read_only_case", "case '" + caseId +
                                               "' is not an imported patient: its landmarks and osteotomies are fixed "
@@ -62,18 +62,17 @@ void PlanningSession::editCase(MessageReader& r, const json& id) {
   r.rejectUnknown();
   if (edit.landmarks.empty() && !edit.cuts)
     throw ProtocolError("missing_field", "edit_case needs landmarks or cuts to change", "/landmarks");
-  auto self = shared_from_this();
   const std::filesystem::path caseFile = entry->caseFile;
   work_.submit(
-      [self, caseId, caseFile, edit, id](const std::atomic<bool>&) {
+      [this, keep = channel_.keepAlive(), caseId, caseFile, edit, id](const std::atomic<bool>&) {
         try {
           applyCaseEdit(caseFile, edit);
         } catch (const std::exception& e) {
-          return self->sendError("edit_failed", "case '" + caseId + "' is unchanged: " + e.what(), "", id);
+          return channel_.sendError("edit_failed", "case '" + caseId + "' is unchanged: " + e.what(), "", id);
         }
-        self->service_.cases().invalidate(caseId);
-        self->reply({{"type", "case_edited"}, {"case", caseId}}, id);
-        self->startOpening(caseId, id);
+        cases_.invalidate(caseId);
+        channel_.reply({{"type", "case_edited"}, {"case", caseId}}, id);
+        startOpening(caseId, id);
       },
       SerialWork::Kind::Ordered);
 }

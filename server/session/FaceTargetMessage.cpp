@@ -5,15 +5,18 @@
 #include <algorithm>
 
 #include "planning/FaceRequestJson.hpp"
+#include "session/FaceHandler.hpp"
 #include "session/OpenCase.hpp"
-#include "session/PlanningSession.hpp"
 
 namespace orthosim::server {
 using nlohmann::json;
-using Poses = std::map<std::string, AnatomicalPose>;
 
-void PlanningSession::planFromFace(MessageReader& r, const json& id) {
-  const std::shared_ptr<OpenCase> c = requireOpen();
+FaceHandler::FaceHandler(SessionState& state, const SessionChannel& channel, SerialWork& work, FrameHandler& frames,
+                         PreviewScheduler& previews, const PoseLimits& limits)
+    : state_(state), channel_(channel), work_(work), frames_(frames), previews_(previews), limits_(limits) {}
+
+void FaceHandler::planFromFace(MessageReader& r, const json& id) {
+  const std::shared_ptr<OpenCase> c = state_.requireOpen();
   json request = json::object();
   for (const char* key : {"targets", "locks"})
     if (r.has(key)) request[key] = r.raw()[key];
@@ -31,18 +34,17 @@ void PlanningSession::planFromFace(MessageReader& r, const json& id) {
   checkFaceRequest(face, *c);
   Poses start;
   if (from == "current") {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    start = poses_;
+    const std::lock_guard<std::mutex> lock(state_.mutex);
+    start = state_.poses;
   }
-  reply({{"type", "face_fitting"}, {"case", c->id}, {"targets", face.targets.size()}}, id);
-  auto self = shared_from_this();
-  work_.submit(
-      [self, c, face, start, id](const std::atomic<bool>& cancel) { self->runFaceFit(c, face, start, id, cancel); },
-      SerialWork::Kind::Newest);
+  channel_.reply({{"type", "face_fitting"}, {"case", c->id}, {"targets", face.targets.size()}}, id);
+  work_.submit([this, keep = channel_.keepAlive(), c, face, start,
+                id](const std::atomic<bool>& cancel) { runFaceFit(c, face, start, id, cancel); },
+               SerialWork::Kind::Newest);
 }
 
 // Names the client can be told about at once, before the fit is queued.
-void PlanningSession::checkFaceRequest(const FaceRequest& face, const OpenCase& c) const {
+void FaceHandler::checkFaceRequest(const FaceRequest& face, const OpenCase& c) const {
   for (const FaceTarget& t : face.targets)
     if (std::find(c.faceLandmarks.begin(), c.faceLandmarks.end(), t.landmark) == c.faceLandmarks.end()) {
       std::string known;
@@ -58,30 +60,26 @@ void PlanningSession::checkFaceRequest(const FaceRequest& face, const OpenCase& 
     }
 }
 
-void PlanningSession::runFaceFit(const std::shared_ptr<OpenCase>& c, const FaceRequest& face, const Poses& start,
-                                 const json& id, const std::atomic<bool>& cancel) {
+void FaceHandler::runFaceFit(const std::shared_ptr<OpenCase>& c, const FaceRequest& face, const Poses& start,
+                             const json& id, const std::atomic<bool>& cancel) {
   FaceFitOptions options;
   options.locks = face.locks;
-  options.translationLimitMm = service_.limits().translationMm;
-  options.rotationLimitDeg = service_.limits().rotationDeg;
+  options.translationLimitMm = limits_.translationMm;
+  options.rotationLimitDeg = limits_.rotationDeg;
   SolveControl control;
   control.cancel = &cancel;
-  std::shared_ptr<SessionView> view;
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    if (open_ == c) view = view_;
-  }
+  const std::shared_ptr<SessionView> view = state_.viewOf(c);
   const auto onIteration = [&](const FaceFitProgress& p) {
     json poses = json::object();
     for (const auto& [name, pose] : p.poses) poses[name] = poseToJson(pose);
-    reply({{"type", "face_progress"},
-           {"iteration", p.iteration},
-           {"largest_miss_mm", p.largestResidualMm},
-           {"poses", std::move(poses)}},
-          id);
+    channel_.reply({{"type", "face_progress"},
+                    {"iteration", p.iteration},
+                    {"largest_miss_mm", p.largestResidualMm},
+                    {"poses", std::move(poses)}},
+                   id);
     if (view && p.state) {  // the bones moving to reach the targets
       view->postState(*p.state, {{"pose_id", id}, {"state", "face_fit"}, {"iteration", p.iteration}});
-      requestFrame();
+      frames_.requestFrame();
     }
   };
   FaceFitResult result;
@@ -89,32 +87,33 @@ void PlanningSession::runFaceFit(const std::shared_ptr<OpenCase>& c, const FaceR
     result =
         orthosim::planFromFace(*c->model, *c->coarse, c->fragments, face.targets, start, options, control, onIteration);
   } catch (const std::invalid_argument& e) {
-    return sendError("bad_value", e.what(), "", id);
+    return channel_.sendError("bad_value", e.what(), "", id);
   } catch (const std::exception& e) {
-    return reply({{"type", "face_plan_failed"},
-                  {"case", c->id},
-                  {"message", std::string("planning from the face failed: ") + e.what() + "; the poses are unchanged"}},
-                 id);
+    return channel_.reply(
+        {{"type", "face_plan_failed"},
+         {"case", c->id},
+         {"message", std::string("planning from the face failed: ") + e.what() + "; the poses are unchanged"}},
+        id);
   }
   json out = faceFitJson(result);
   out["type"] = "face_plan";
   out["case"] = c->id;
   if (result.cancelled) {  // a newer pose or preview came: it decides the poses
     out["message"] = "superseded by a newer pose or preview; the poses are unchanged";
-    return reply(std::move(out), id);
+    return channel_.reply(std::move(out), id);
   }
   c->lastGood = result.state;  // the next preview starts on the fit's converged face
   json warnings = json::array();
   {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    if (open_ != c) return;
-    poses_ = result.poses;
-    for (const auto& [name, pose] : poses_)
+    const std::lock_guard<std::mutex> lock(state_.mutex);
+    if (state_.open != c) return;
+    state_.poses = result.poses;
+    for (const auto& [name, pose] : state_.poses)
       for (std::string& w : unusualPoseWarnings(name, pose)) warnings.push_back(std::move(w));
   }
   out["warnings"] = std::move(warnings);
-  reply(std::move(out), id);
-  schedulePreview(id);
+  channel_.reply(std::move(out), id);
+  previews_.schedule(id);
 }
 
 }  // namespace orthosim::server

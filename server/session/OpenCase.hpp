@@ -1,17 +1,19 @@
 #pragma once
-// What a planning session holds of its open case (session/PlanningSession.hpp): the coarse model
+// What a planning session holds of its open case (session/SessionState.hpp): the coarse model
 // and its solver state, the movable fragments, the newest preview and its drag response. Shared by
-// the session's files (PlanningSession.cpp and the message files beside it).
+// the session's message handlers.
 #include <malloc.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "eval/SkinFigures.hpp"
 #include "scene/PlanningFragments.hpp"
+#include "session/AnatomicalPoseJson.hpp"
 #include "session/DragResponse.hpp"
-#include "session/PlanningSession.hpp"
+#include "session/MessageReader.hpp"
 #include "solver/Model.hpp"
 
 namespace orthosim::server {
@@ -22,7 +24,7 @@ struct ReturnFreedMemory {
   ~ReturnFreedMemory() { ::malloc_trim(0); }
 };
 
-struct PlanningSession::OpenCase {
+struct OpenCase {
   ReturnFreedMemory trimLast;  // first member: destroyed after the others
   std::string id;
   std::shared_ptr<const CaseModel> coarse;
@@ -32,7 +34,7 @@ struct PlanningSession::OpenCase {
   // immutable parts (scene, coupling, energy) to find tissue the poses crush.
   std::unique_ptr<Model> model;
   SimState lastGood;
-  // Guarded by the session's mutex: the newest converged preview, for exports and comparisons.
+  // Guarded by the session state's mutex: the newest converged preview, for exports and comparisons.
   std::shared_ptr<const Eigen::Matrix3Xd> previewX;
   std::map<std::string, AnatomicalPose> previewPoses;
   std::shared_ptr<const DragResponse> drag;  // its linear response, for frames during a drag
@@ -53,6 +55,9 @@ struct PlanningSession::OpenCase {
   std::map<std::string, FragmentMotion> plan(const std::map<std::string, AnatomicalPose>& poses) const {
     return planFromPoses(fragments, poses, coarse->spec.frame);
   }
+  // The poses of an object {fragment: pose}; throws ProtocolError naming an unknown fragment or a
+  // pose beyond the limits.
+  std::map<std::string, AnatomicalPose> readPoses(MessageReader r, const PoseLimits& limits) const;
 };
 
 }  // namespace orthosim::server

@@ -19,7 +19,7 @@ PlanningService::PlanningService(PlanningOptions options)
       patients_(options_.dataDir, cases_),
       scans_(options_.dataDir, patients_, options_.scanExpiry, options_.maxStagedScans),
       slots_(options_.maxSessions, options_.idleSlotGrace),
-      previewPool_(static_cast<std::size_t>(std::max(1, options_.previewThreads))) {
+      pools_(options_.previewThreads) {
   // Those of writers on other hosts only when alone: a replica or a worker there may be writing them.
   for (const std::string& leftover : removeLeftovers(options_.dataDir, lock_.alone()))
     std::cerr << "orthosim serve: removed " << leftover << ", left by an interrupted write\n";
@@ -68,7 +68,7 @@ nlohmann::json PlanningService::health(const std::string& version) const {
 }
 
 void PlanningService::warmUp(const std::string& caseId) {
-  boost::asio::post(previewPool_, [this, caseId] {
+  boost::asio::post(pools_.preview(), [this, caseId] {
     try {
       cases_.model(caseId, Resolution::Coarse);
       std::cerr << "orthosim serve: case " << caseId << " ready\n";
@@ -81,10 +81,7 @@ void PlanningService::warmUp(const std::string& caseId) {
 void PlanningService::shutdown() {
   if (fineJobs_) fineJobs_->shutdown();
   localJobs_.shutdown();
-  previewPool_.stop();  // queued previews never start; running ones see their session's cancel
-  previewPool_.join();
-  renderPool_.stop();
-  renderPool_.join();
+  pools_.stopPreviewsAndFrames();
 }
 
 }  // namespace orthosim::server

@@ -3,7 +3,6 @@
 // bounded queue of fine jobs, saved plans and exported files, and the count of open sessions.
 // Owned by the server; outlives every session.
 #include <atomic>
-#include <boost/asio/thread_pool.hpp>
 #include <chrono>
 #include <filesystem>
 #include <memory>
@@ -16,7 +15,8 @@
 #include "cases/ScanStore.hpp"
 #include "jobs/FineJobs.hpp"
 #include "jobs/JobQueue.hpp"
-#include "session/AnatomicalPose.hpp"
+#include "schedule/ThreadPools.hpp"
+#include "session/AnatomicalPoseJson.hpp"
 #include "session/DataFolderLock.hpp"
 #include "session/ExportStore.hpp"
 #include "session/PlanStore.hpp"
@@ -61,9 +61,9 @@ class PlanningService {
   ~PlanningService();
 
   CaseLibrary& cases() { return cases_; }
-  boost::asio::thread_pool& previewPool() { return previewPool_; }
+  boost::asio::thread_pool& previewPool() { return pools_.preview(); }
   // One thread draws every session's frames: each session's renderer is used by one thread.
-  boost::asio::thread_pool& renderPool() { return renderPool_; }
+  boost::asio::thread_pool& renderPool() { return pools_.render(); }
   // Fine jobs: on localJobs() or, with redisUrl, on the workers.
   FineJobs& fineJobs() { return *fineJobs_; }
   // This machine's bounded pool: band and fine jobs without redisUrl.
@@ -75,7 +75,7 @@ class PlanningService {
   ScanStore& scans() { return scans_; }
   // Imports run here, one at a time, off the network threads (checking a patient's surfaces takes
   // seconds).
-  boost::asio::thread_pool& importPool() { return importPool_; }
+  boost::asio::thread_pool& importPool() { return pools_.import(); }
   ExportStore& exports() { return exports_; }
   const PoseLimits& limits() const { return options_.limits; }
   const PlanningOptions& options() const { return options_; }
@@ -104,9 +104,7 @@ class PlanningService {
   ScanStore scans_;
   SessionSlots slots_;
   // Last, so destroyed first: work they still hold may end a session, which uses the members above.
-  boost::asio::thread_pool previewPool_;
-  boost::asio::thread_pool renderPool_{1};
-  boost::asio::thread_pool importPool_{1};
+  ThreadPools pools_;
 };
 
 }  // namespace orthosim::server

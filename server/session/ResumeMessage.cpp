@@ -2,12 +2,11 @@
 // the server stopped and started again under the same replica name on Redis) opens its case again
 // and takes over the fine jobs its former session left, by that session's id from `welcome`. The
 // jobs' outcomes then reach this session as if it had queued them.
+#include "session/JobHandler.hpp"
 #include "session/OpenCase.hpp"
-#include "session/PlanningSession.hpp"
 
 namespace orthosim::server {
 using nlohmann::json;
-using Poses = std::map<std::string, AnatomicalPose>;
 
 namespace {
 
@@ -20,24 +19,24 @@ bool isSessionId(const std::string& s) {
 
 }  // namespace
 
-void PlanningSession::resume(MessageReader& r, const json& id) {
-  const std::shared_ptr<OpenCase> c = requireOpen();
+void JobHandler::resume(MessageReader& r, const json& id) {
+  const std::shared_ptr<OpenCase> c = state_.requireOpen();
   const std::string former = r.string("session");
   r.rejectUnknown();
   if (!isSessionId(former))
     throw ProtocolError("bad_value",
                         "/session: the former session's id from its welcome (lower-case hex, 1 to 64 characters)",
                         "/session");
-  auto self = shared_from_this();
-  const auto callbacksFor = [self, c](const json& context) {
+  const auto callbacksFor = [this, keep = channel_.keepAlive(), c](const json& context) {
     Poses poses;  // the poses the job was queued with; none when the case changed since
     try {
-      if (context.contains("poses")) poses = self->readPoses(MessageReader(context["poses"], "/poses"), *c);
+      if (context.contains("poses"))
+        poses = c->readPoses(MessageReader(context["poses"], "/poses"), services_.options.limits);
     } catch (const std::exception&) {
     }
-    return self->fineCallbacks(c, poses);
+    return fineCallbacks(c, poses);
   };
-  service_.fineJobs().resume(former, id_, c->id, callbacksFor, [&](const std::vector<ResumedJob>& jobs) {
+  services_.fineJobs.resume(former, owner_, c->id, callbacksFor, [&](const std::vector<ResumedJob>& jobs) {
     json list = json::array();
     for (const ResumedJob& j : jobs) {
       json item = {{"job", j.job}, {"state", j.state}};
@@ -47,7 +46,7 @@ void PlanningSession::resume(MessageReader& r, const json& id) {
       }
       list.push_back(std::move(item));
     }
-    reply({{"type", "resumed"}, {"session", former}, {"case", c->id}, {"jobs", std::move(list)}}, id);
+    channel_.reply({{"type", "resumed"}, {"session", former}, {"case", c->id}, {"jobs", std::move(list)}}, id);
   });
 }
 

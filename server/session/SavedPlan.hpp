@@ -10,7 +10,7 @@
 
 #include "scene/Osteotomy.hpp"
 #include "scene/RigidPose.hpp"
-#include "session/AnatomicalPose.hpp"
+#include "session/AnatomicalPoseJson.hpp"
 #include "session/MessageReader.hpp"
 #include "session/PlanStamp.hpp"
 

@@ -19,7 +19,7 @@ void SessionSlots::Slot::whenNeeded(std::function<bool()> hasCase, std::function
 
 void SessionSlots::Slot::heard() {
   const std::lock_guard<std::mutex> lock(slots_.mutex_);
-  heard_ = Clock::now();
+  heard_ = slots_.now_();
 }
 
 void SessionSlots::Slot::rejoin() {
@@ -29,14 +29,15 @@ void SessionSlots::Slot::rejoin() {
   slots_.held_.push_back(this);
 }
 
-SessionSlots::SessionSlots(int maxSessions, std::chrono::milliseconds grace) : max_(maxSessions), grace_(grace) {}
+SessionSlots::SessionSlots(int maxSessions, std::chrono::milliseconds grace, std::function<Clock::time_point()> now)
+    : max_(maxSessions), grace_(grace), now_(std::move(now)) {}
 
 std::unique_ptr<SessionSlots::Slot> SessionSlots::enter() {
   std::function<void()> giveUp;
   std::unique_ptr<Slot> slot;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    const Clock::time_point now = Clock::now();
+    const Clock::time_point now = now_();
     if (static_cast<int>(held_.size()) >= max_) {
       // Oldest first: the first idle one without a case gives its slot up.
       const auto idle = std::find_if(held_.begin(), held_.end(), [&](const Slot* s) {

@@ -46,7 +46,8 @@ class SessionSlots {
     bool held_ = true;  // false once given up
   };
 
-  SessionSlots(int maxSessions, std::chrono::milliseconds grace);
+  // `now` is the clock the grace period is measured on (a test's own clock, to step past it).
+  SessionSlots(int maxSessions, std::chrono::milliseconds grace, std::function<Clock::time_point()> now = Clock::now);
 
   // A free slot, or one an idle connection without a case gives up (its giveUp runs before this
   // returns); nullptr when neither is there.
@@ -56,6 +57,7 @@ class SessionSlots {
  private:
   int max_;
   std::chrono::milliseconds grace_;
+  std::function<Clock::time_point()> now_;
   mutable std::mutex mutex_;
   std::list<Slot*> held_;  // oldest first
 };

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "Square.hpp"
+#include "TermDerivatives.hpp"
 #include "contact/ContactEnergy.hpp"
 #include "contact/SmoothPenalty.hpp"
 #include "meshing/SurfacePrimitives.hpp"
@@ -74,39 +75,29 @@ TEST(ContactEnergy, GradientMatchesFiniteDifferencesOfTheEnergy) {
   ASSERT_GT(contacts.size(), 5u);
   ASSERT_LT(contacts.size(), 35u);
   f.energy.addGradient(contacts, g);
-  const double h = 1e-6;
-  for (int i = 0; i < f.x.cols(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      Eigen::Matrix3Xd xp = f.x, xm = f.x;
-      xp(c, i) += h;
-      xm(c, i) -= h;
-      EXPECT_NEAR(g(c, i), (energyAt(xp) - energyAt(xm)) / (2 * h), 1e-6) << "node " << i << " component " << c;
-    }
-}
-
-Eigen::Matrix3Xd contactGradient(const Fixture& f, const Eigen::Matrix3Xd& x) {
-  Eigen::Matrix3Xd g = Eigen::Matrix3Xd::Zero(3, x.cols());
-  f.energy.addGradient(f.energy.active(x, f.poses), g);
-  return g;
+  EXPECT_TRUE(test::gradientMatchesValue([&](const Eigen::VectorXd& v) { return energyAt(test::positionsOf(v)); },
+                                         [&](const Eigen::VectorXd& v) {
+                                           Eigen::Matrix3Xd gv = Eigen::Matrix3Xd::Zero(3, f.x.cols());
+                                           const Eigen::Matrix3Xd x = test::positionsOf(v);
+                                           f.energy.addGradient(f.energy.active(x, f.poses), gv);
+                                           return test::flatten(gv);
+                                         },
+                                         test::FdPoint{"points round a sphere", test::flatten(f.x)},
+                                         test::FdTolerance{0, 1e-6}));
 }
 
 // The exact Hessian block of every active node against central differences of the gradient. The
 // points scatter round the surface so that some lie outside, some in the penalty's cubic onset and
-// some deeper.
+// some deeper. Each entry within tolerance (1 + |entry|) / sqrt(3), so each node's column within
+// tolerance (1 + |column|).
 void expectExactHessian(const Fixture& f, double tolerance) {
   const auto contacts = f.energy.active(f.x, f.poses);
   ASSERT_GT(contacts.size(), 5u);
-  const double h = 1e-6;
-  for (const ActiveContact& a : contacts) {
-    const Eigen::Matrix3d H = ContactEnergy::hessianBlock(a, false);
-    for (int c = 0; c < 3; ++c) {
-      Eigen::Matrix3Xd xp = f.x, xm = f.x;
-      xp(c, a.node) += h;
-      xm(c, a.node) -= h;
-      const Eigen::Vector3d fd = (contactGradient(f, xp).col(a.node) - contactGradient(f, xm).col(a.node)) / (2 * h);
-      EXPECT_LT((H.col(c) - fd).norm(), tolerance * (1 + fd.norm())) << "node " << a.node << " at " << a.distance;
-    }
-  }
+  test::FdPoint p{"active nodes", test::flatten(f.x)};
+  for (const ActiveContact& a : contacts)
+    for (int c = 0; c < 3; ++c) p.unknowns.push_back(3 * a.node + c);
+  const double entry = tolerance / std::sqrt(3.0);
+  EXPECT_TRUE(test::termHessianMatchesGradient(f.energy, f.poses, p, test::FdTolerance{entry, entry}));
 }
 
 // On a flat surface the normal is constant: the curvature term vanishes.

@@ -169,6 +169,8 @@ TEST(ContactSolve, ASceneWithoutContactMakesNoDistanceQuery) {
   s.plan["top"].translation = {1, 0, -1};
   Model model(s);
   EXPECT_EQ(model.contact(), nullptr);
+  ASSERT_EQ(model.terms().size(), 1u);  // the soft tissue alone
+  EXPECT_EQ(model.terms()[0], &model.energy());
   const SolveResult r = solveScene(model);
   ASSERT_TRUE(r.converged) << r.error;
   EXPECT_EQ(r.timings.contactQueries, 0);

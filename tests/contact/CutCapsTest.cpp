@@ -6,6 +6,7 @@
 
 #include <map>
 
+#include "TermDerivatives.hpp"
 #include "contact/ContactEnergy.hpp"
 #include "math/Angles.hpp"
 #include "meshing/CutCaps.hpp"
@@ -126,24 +127,16 @@ TEST(CutCaps, ContactDerivativesHoldNextToACap) {
   }
   const ContactEnergy energy({pair});
   const std::vector<RigidPose> poses;
-  const auto gradientAt = [&](const Eigen::Matrix3Xd& y) {
-    Eigen::Matrix3Xd g = Eigen::Matrix3Xd::Zero(3, y.cols());
-    energy.addGradient(energy.active(y, poses), g);
-    return g;
-  };
   const auto contacts = energy.active(x, poses);
   ASSERT_GT(contacts.size(), 10u);
-  const double h = 1e-6;
+  // Each Hessian entry within 1e-5 (1 + |entry|) / sqrt(3), so each node's column within 1e-5 (1 + |column|).
+  test::FdPoint p{"points under the cut cap", test::flatten(x)};
   for (const ActiveContact& c : contacts)
-    for (int k = 0; k < 3; ++k) {
-      Eigen::Matrix3Xd xp = x, xm = x;
-      xp(k, c.node) += h;
-      xm(k, c.node) -= h;
-      const Eigen::Vector3d fd = (gradientAt(xp).col(c.node) - gradientAt(xm).col(c.node)) / (2 * h);
-      EXPECT_LT((ContactEnergy::hessianBlock(c, false).col(k) - fd).norm(), 1e-5 * (1 + fd.norm())) << c.node;
-      const double e0 = energy.energy(energy.active(xm, poses)), e1 = energy.energy(energy.active(xp, poses));
-      EXPECT_NEAR(gradientAt(x)(k, c.node), (e1 - e0) / (2 * h), 1e-6 * (1 + std::abs(e1))) << c.node;
-    }
+    for (int k = 0; k < 3; ++k) p.unknowns.push_back(3 * c.node + k);
+  const double entry = 1e-5 / std::sqrt(3.0);
+  EXPECT_TRUE(test::termHessianMatchesGradient(energy, poses, p, test::FdTolerance{entry, entry}));
+  EXPECT_TRUE(
+      test::termGradientMatchesValue(energy, poses, p, test::FdTolerance{0, 1e-6 * (1 + energy.value({x, poses}))}));
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <filesystem>
+#include <map>
 
 #include "eval/PredictionBand.hpp"
 #include "eval/PredictionBandJson.hpp"
@@ -30,6 +31,7 @@ class PhantomBand : public ::testing::Test {
   }
   static void TearDownTestSuite() {
     delete full_;
+    delete skins_;
     delete coarse_;
     fs::remove_all(*dir_);
     delete dir_;
@@ -38,8 +40,18 @@ class PhantomBand : public ::testing::Test {
   // The full band (16 solves), made by the first test that asks: ctest runs each test in a process
   // of its own, and only the band tests need it.
   static const PredictionBand& full() {
-    if (!full_) full_ = new PredictionBand(predictionBand(*coarse_, coarse_->spec.plan));
+    if (!full_) {
+      skins_ = new std::map<int, SurfaceMesh>;
+      BandControl control;
+      control.onSkin = [](int run, const SurfaceMesh& skin) { (*skins_)[run] = skin; };
+      full_ = new PredictionBand(predictionBand(*coarse_, coarse_->spec.plan, {}, control));
+    }
     return *full_;
+  }
+  // The skins of the full band's converged runs, by run: the band keeps only their envelope.
+  static const std::map<int, SurfaceMesh>& runSkins() {
+    full();
+    return *skins_;
   }
 
   // Display-skin vertices within 6 mm of the lips' and chin's landmarks at rest.
@@ -59,6 +71,7 @@ class PhantomBand : public ::testing::Test {
   static inline fs::path* dir_ = nullptr;
   static inline CaseModel* coarse_ = nullptr;
   static inline PredictionBand* full_ = nullptr;
+  static inline std::map<int, SurfaceMesh>* skins_ = nullptr;
 };
 
 TEST_F(PhantomBand, ContainsTheNominalPrediction) {
@@ -93,6 +106,24 @@ TEST_F(PhantomBand, ContainsTheNominalPrediction) {
   }
   EXPECT_GE(measured, 6);
   EXPECT_GE(2 * moved, measured) << "the parameters move most landmarks by more than 0.05 mm";
+  // The envelope likewise: at each vertex the least and greatest offset of the nominal and every
+  // converged run along the nominal skin's normal, recomputed from the runs' skins.
+  const std::map<int, SurfaceMesh>& skins = runSkins();
+  ASSERT_EQ(skins.size(), static_cast<size_t>(b.converged()));
+  const SurfaceMesh& nominal = skins.at(0);
+  ASSERT_EQ(nominal.numVertices(), b.envelope.nominal.numVertices());
+  EXPECT_LT((nominal.vertices - b.envelope.nominal.vertices).cwiseAbs().maxCoeff(), 1e-12);
+  const Eigen::Matrix3Xd normals = nominal.vertexNormals();
+  EXPECT_LT((normals - b.envelope.normals).cwiseAbs().maxCoeff(), 1e-12);
+  Eigen::VectorXd low = Eigen::VectorXd::Zero(nominal.numVertices()), high = low;
+  for (const auto& [run, skin] : skins) {
+    const Eigen::VectorXd offset = (skin.vertices - nominal.vertices).cwiseProduct(normals).colwise().sum();
+    low = low.cwiseMin(offset);
+    high = high.cwiseMax(offset);
+  }
+  EXPECT_LT((b.envelope.low - low).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((b.envelope.high - high).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_GT((high - low).maxCoeff(), 0.2) << "the runs' skins differ";
   // Every one-at-a-time effect is there, and the bonded lips moved at least one lip landmark.
   for (size_t p = 0; p < b.effect.size(); ++p)
     for (size_t l = 0; l < b.landmarks.size(); ++l) EXPECT_EQ(b.effect[p][l].has_value(), b.landmarks[l].measured);
@@ -167,8 +198,9 @@ TEST_F(PhantomBand, ANominalSolveThatFailsIsAnErrorNamingIt) {
   try {
     predictionBand(starved, starved.spec.plan);
     FAIL() << "no error";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("nominal solve did not converge"), std::string::npos) << e.what();
+  } catch (const BandNominalFailed& e) {
+    EXPECT_EQ(e.outcome, SolveOutcome::failed) << e.what();
+    EXPECT_NE(std::string(e.what()).find("nominal"), std::string::npos) << "names the nominal solve: " << e.what();
   }
 }
 

@@ -21,7 +21,7 @@ using nlohmann::json;
 JobMessage bandJob() {
   JobMessage m;
   m.job = "0123456789abcdef-8";
-  m.kind = "band";
+  m.kind = JobKind::band;
   m.caseId = "phantom-0";
   m.caseHash = "00ff00ff00ff00ff";
   m.resolution = Resolution::Coarse;
@@ -36,7 +36,7 @@ JobMessage bandJob() {
 JobMessage cohortJob() {
   JobMessage m;
   m.job = "bench0123456789-3";
-  m.kind = "cohort";
+  m.kind = JobKind::cohort;
   m.caseId = "M4";
   m.caseHash = "00ff00ff00ff00ff";
   m.resolution = Resolution::Coarse;
@@ -59,10 +59,22 @@ void expectRefused(const json& j, const std::string& mentions) {
   }
 }
 
+TEST(JobKinds, EachKindTravelsAsItsWord) {
+  for (JobKind kind : {JobKind::fine, JobKind::band, JobKind::cohort})
+    EXPECT_EQ(jobKindOfWord(jobKindWord(kind)), kind);
+  EXPECT_STREQ(jobKindWord(JobKind::fine), "fine");
+  EXPECT_STREQ(jobKindWord(JobKind::band), "band");
+  EXPECT_STREQ(jobKindWord(JobKind::cohort), "cohort");
+  EXPECT_FALSE(jobKindOfWord("Band").has_value());
+  EXPECT_FALSE(jobKindOfWord("").has_value());
+  const json wire = json::parse(encodeJobMessage(bandJob()));
+  EXPECT_EQ(wire["kind"], "band");
+}
+
 TEST(JobKinds, ABandJobRoundTripsWithItsOptions) {
   const JobMessage in = bandJob();
   const JobMessage out = decodeJobMessage(encodeJobMessage(in));
-  EXPECT_EQ(out.kind, "band");
+  EXPECT_EQ(out.kind, JobKind::band);
   EXPECT_EQ(out.resolution, Resolution::Coarse);
   ASSERT_TRUE(out.band.has_value());
   EXPECT_FALSE(out.cohort.has_value());
@@ -77,7 +89,7 @@ TEST(JobKinds, ABandJobRoundTripsWithItsOptions) {
 
 TEST(JobKinds, ACohortJobRoundTripsWithItsRun) {
   const JobMessage out = decodeJobMessage(encodeJobMessage(cohortJob()));
-  EXPECT_EQ(out.kind, "cohort");
+  EXPECT_EQ(out.kind, JobKind::cohort);
   EXPECT_EQ(out.caseId, "M4");
   ASSERT_TRUE(out.cohort.has_value());
   EXPECT_FALSE(out.band.has_value());

@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <thread>
 
 #include "../server/ServerProcess.hpp"
 #include "../server/WsTestClient.hpp"
@@ -128,7 +127,7 @@ TEST(RedisBandJobs, CancelStopsABandRunningOnAWorker) {
   REQUIRE_REDIS_SERVER();
   test::RedisTestServer redis;
   auto worker = startWorker(redis, "band-cancel-w1");
-  test::ServerProcess server({"--redis", redis.url()});
+  test::ServerProcess server({"--redis", redis.url()}, logFile("band-cancel-serve").string());
   test::WsTestClient ws(server.port());
   openPhantom(ws);
   const long long job = ws.request(kBand)["job"];
@@ -142,10 +141,11 @@ TEST(RedisBandJobs, CancelStopsABandRunningOnAWorker) {
   EXPECT_EQ(outcome["phase"], "solve") << "it was running";
   EXPECT_LT(outcome["solved"].get<int>(), 8) << "stopped before the end";
   EXPECT_TRUE(test::waitUntil([&] { return pendingJobs(redis) == 0; }, 5s, 50ms)) << "acknowledged";
-  std::this_thread::sleep_for(500ms);
-  for (const json& m : ws.received()) EXPECT_NE(m.value("type", ""), "band_done") << m.dump();
-  // There is no band to show.
+  // Any band the worker finished is on the reply stream; once the server has handled it, the
+  // band_view reply comes after what it sent the page. There is no band to show.
+  ASSERT_TRUE(test::serverHandledEveryReply(redis, logFile("band-cancel-serve"), 10s));
   EXPECT_EQ(ws.request({{"type", "band_view"}, {"surface", "low"}})["error"], "no_band");
+  for (const json& m : ws.received()) EXPECT_NE(m.value("type", ""), "band_done") << m.dump();
 }
 
 // A fine job outlives its session for a page that resumes it; a band job ends with its session,
@@ -183,7 +183,7 @@ TEST(RedisBandJobs, MalformedBandAndCohortJobsAreRefusedNotRun) {
   const std::string replies = server::replyStreamName("feedfacefeedface");
   server::JobMessage band;
   band.job = "feedfacefeedface-1";
-  band.kind = "band";
+  band.kind = server::JobKind::band;
   band.caseId = "phantom-0";
   band.caseHash = "0123456789abcdef";
   band.resolution = Resolution::Coarse;
@@ -194,7 +194,7 @@ TEST(RedisBandJobs, MalformedBandAndCohortJobsAreRefusedNotRun) {
   c.command({"XADD", server::kJobStream, "*", "job", wide.dump()});
   server::JobMessage cohort;
   cohort.job = "feedfacefeedface-2";
-  cohort.kind = "cohort";
+  cohort.kind = server::JobKind::cohort;
   cohort.caseId = "M4";
   cohort.caseHash = "0123456789abcdef";
   cohort.replyStream = replies;

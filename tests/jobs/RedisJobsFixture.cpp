@@ -54,4 +54,39 @@ long long pendingJobs(const RedisTestServer& redis) {
   return r.array.empty() ? 0 : r.array[0].integer;
 }
 
+namespace {
+
+int occurrences(const fs::path& log, const std::string& text) {
+  const std::string all = readFile(log);
+  int n = 0;
+  for (size_t at = all.find(text); at != std::string::npos; at = all.find(text, at + 1)) ++n;
+  return n;
+}
+
+// Adds `fields` to `stream` and waits until `log` says `text` once more than before.
+bool answeredInLog(const RedisTestServer& redis, const std::string& stream, const std::vector<std::string>& fields,
+                   const fs::path& log, const std::string& text, std::chrono::milliseconds timeout) {
+  const int before = occurrences(log, text);
+  server::RedisConnection c(server::parseRedisUrl(redis.url()));
+  std::vector<std::string> command{"XADD", stream, "*"};
+  command.insert(command.end(), fields.begin(), fields.end());
+  c.command(command);
+  return waitUntil([&] { return occurrences(log, text) > before; }, timeout, 50ms);
+}
+
+}  // namespace
+
+bool workerTookEveryJob(const RedisTestServer& redis, const fs::path& workerLog, std::chrono::milliseconds timeout) {
+  return answeredInLog(redis, server::kJobStream, {"marker", "no job"}, workerLog, "refused stream entry", timeout);
+}
+
+bool serverHandledEveryReply(const RedisTestServer& redis, const fs::path& serverLog,
+                             std::chrono::milliseconds timeout) {
+  server::RedisConnection c(server::parseRedisUrl(redis.url()));
+  const server::RedisValue streams = c.command({"KEYS", server::replyStreamName("*")});
+  if (streams.array.size() != 1) return false;
+  return answeredInLog(redis, streams.array[0].string, {"msg", "no JSON"}, serverLog,
+                       "ignored a reply that is not JSON", timeout);
+}
+
 }  // namespace orthosim::test

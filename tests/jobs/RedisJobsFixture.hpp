@@ -36,4 +36,16 @@ std::vector<nlohmann::json> replies(server::RedisConnection& redis, const std::s
 // Stream entries handed to a worker and not acknowledged yet.
 long long pendingJobs(const RedisTestServer& redis);
 
+// Waits for events that come after whatever must not happen, instead of a quiet time:
+// - a worker takes the stream's entries in order: an entry that is no job, queued now, is refused
+//   (its log says so) only after every job queued before it was taken;
+// - a server handles its reply stream in order: an entry that is no JSON, added now, is ignored
+//   (its log says so) only after every reply written before it was handled. The reply stream is
+//   the only one on `redis` (one server).
+// Each returns whether the log said so before `timeout`.
+bool workerTookEveryJob(const RedisTestServer& redis, const std::filesystem::path& workerLog,
+                        std::chrono::milliseconds timeout);
+bool serverHandledEveryReply(const RedisTestServer& redis, const std::filesystem::path& serverLog,
+                             std::chrono::milliseconds timeout);
+
 }  // namespace orthosim::test

@@ -10,7 +10,6 @@
 #include <csignal>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <thread>
 
 #include "../server/ServerProcess.hpp"
 #include "../server/WsTestClient.hpp"
@@ -125,7 +124,7 @@ TEST(RedisJobs, AWorkerKilledMidJobIsReplacedAndTheJobIsDoneOnce) {
   const json reference = inProcessDone();
   test::RedisTestServer redis;
   auto first = startWorker(redis, "killed-w1");
-  test::ServerProcess server({"--redis", redis.url()});
+  test::ServerProcess server({"--redis", redis.url()}, logFile("killed-serve").string());
   test::WsTestClient ws(server.port());
   openPhantom(ws);
   const long long job = ws.request({{"type", "confirm"}})["job"];
@@ -140,7 +139,9 @@ TEST(RedisJobs, AWorkerKilledMidJobIsReplacedAndTheJobIsDoneOnce) {
   EXPECT_NE(test::readFile(logFile("killed-w2")).find("took over"), std::string::npos)
       << "the second worker reclaimed it: " << test::readFile(logFile("killed-w2"));
   EXPECT_TRUE(test::waitUntil([&] { return pendingJobs(redis) == 0; }, 5s, 50ms));
-  std::this_thread::sleep_for(1s);  // a second outcome would come now
+  // Acknowledged: any second outcome is on the reply stream; once the server has handled it, a
+  // request's reply comes after what it sent the page.
+  ASSERT_TRUE(test::serverHandledEveryReply(redis, logFile("killed-serve"), 10s));
   ws.request({{"type", "list_plans"}});
   EXPECT_EQ(count(ws, "job_done", job), 1);
   EXPECT_EQ(count(ws, "job_failed", job), 0);
@@ -306,7 +307,7 @@ TEST(RedisJobs, AJobNobodyResumesIsCancelledWithAMessageAndNeverRuns) {
   EXPECT_EQ(c.command({"XLEN", server::kJobStream}).integer, 0) << "taken off the stream";
   EXPECT_TRUE(server::jobRecords(c, replica).empty());
   auto worker = startWorker(redis, "orphan-w1");
-  std::this_thread::sleep_for(1500ms);
+  ASSERT_TRUE(test::workerTookEveryJob(redis, logFile("orphan-w1"), 10s)) << test::readFile(logFile("orphan-w1"));
   EXPECT_EQ(test::readFile(logFile("orphan-w1")).find("case phantom-0 on"), std::string::npos) << "nothing ran";
 }
 
@@ -314,7 +315,8 @@ TEST(RedisJobs, APageThatLostItsConnectionResumesItsRunningJob) {
   REQUIRE_REDIS_SERVER();
   test::RedisTestServer redis;
   auto worker = startWorker(redis, "resume-w1");
-  test::ServerProcess server({"--redis", redis.url(), "--replica", uniqueReplica("drop")});
+  test::ServerProcess server({"--redis", redis.url(), "--replica", uniqueReplica("drop")},
+                             logFile("resume-serve").string());
   std::string former;
   long long job = 0;
   {
@@ -334,7 +336,8 @@ TEST(RedisJobs, APageThatLostItsConnectionResumesItsRunningJob) {
   ASSERT_EQ(resumed["jobs"].size(), 1u) << resumed.dump();
   EXPECT_NE(resumed["jobs"][0]["state"], "queued") << resumed.dump();
   jobMessage(ws, job, "job_done", 300s);
-  std::this_thread::sleep_for(500ms);
+  ASSERT_TRUE(test::waitUntil([&] { return pendingJobs(redis) == 0; }, 5s, 50ms));
+  ASSERT_TRUE(test::serverHandledEveryReply(redis, logFile("resume-serve"), 10s));
   ws.request({{"type", "list_plans"}});
   EXPECT_EQ(count(ws, "job_done", job), 1);
 }

@@ -350,17 +350,23 @@ TEST(Phantom, IsDeterministic) {
   EXPECT_EQ(a.skinTexture.pixels, b.skinTexture.pixels);
 }
 
-TEST(Phantom, IsFastAndScalesWithEdgeLength) {
-  const auto t0 = std::chrono::steady_clock::now();
+TEST(Phantom, ScalesWithEdgeLength) {
   const Phantom coarse = makePhantom({0, 3.0});
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  EXPECT_LT(seconds, 5.0);
   // Four times the edge area: about a quarter of the triangles.
   const double ratio = static_cast<double>(phantomOf(0).skin.numTriangles()) / coarse.skin.numTriangles();
   EXPECT_GT(ratio, 3.0);
   EXPECT_LT(ratio, 5.0);
   SurfaceMesh s = coarse.mandible;
   EXPECT_NO_THROW(checkSurface(s, "coarse mandible", SurfaceRequirement::Closed));
+}
+
+// How fast (label perf): a coarse phantom is built in seconds.
+TEST(PhantomPerf, ACoarsePhantomIsBuiltInUnderFiveSeconds) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Phantom coarse = makePhantom({0, 3.0});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(seconds, 5.0);
+  EXPECT_GT(coarse.skin.numTriangles(), 0);
 }
 
 TEST(Phantom, TextureShowsLipsOnSkin) {

@@ -7,12 +7,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "FiniteDifference.hpp"
 #include "meshing/BoxMesh.hpp"
 #include "physics/NeoHookean.hpp"
 #include "physics/SoftTissueEnergy.hpp"
 
 namespace orthosim {
 namespace {
+
+using test::FdPoint;
+using test::FdTolerance;
 
 const NeoHookean kTissue = NeoHookean::fromYoungPoisson(0.1, 0.47);
 
@@ -23,6 +27,10 @@ Eigen::Matrix3d randomF(std::mt19937& rng, double spread) {
   if (F.determinant() < 0) F.col(0) *= -1;
   return F;
 }
+
+// A deformation gradient as the 9 unknowns of a finite-difference point (column-major), and back.
+Eigen::Matrix3d asF(const Eigen::VectorXd& v) { return Eigen::Map<const Eigen::Matrix3d>(v.data()); }
+Eigen::VectorXd flat(const Eigen::Matrix3d& F) { return Eigen::Map<const Eigen::VectorXd>(F.data(), 9); }
 
 TEST(NeoHookean, LameConstantsFromYoungPoisson) {
   EXPECT_NEAR(kTissue.mu, 0.1 / (2 * 1.47), 1e-15);
@@ -50,16 +58,10 @@ TEST(NeoHookean, InvertedDeformationHasInfiniteEnergy) {
 TEST(NeoHookean, StressIsEnergyGradient) {
   std::mt19937 rng(1);
   for (int trial = 0; trial < 20; ++trial) {
-    const Eigen::Matrix3d F = randomF(rng, 0.4);
-    const Eigen::Matrix3d P = kTissue.stress(F);
-    const double h = 1e-6;
-    for (int i = 0; i < 9; ++i) {
-      Eigen::Matrix3d Fp = F, Fm = F;
-      Fp.data()[i] += h;
-      Fm.data()[i] -= h;
-      const double fd = (kTissue.energy(Fp) - kTissue.energy(Fm)) / (2 * h);
-      EXPECT_NEAR(P.data()[i], fd, 1e-7 * (1 + std::abs(fd))) << "trial " << trial << " entry " << i;
-    }
+    const FdPoint p{"F of trial " + std::to_string(trial), flat(randomF(rng, 0.4))};
+    EXPECT_TRUE(test::gradientMatchesValue([](const Eigen::VectorXd& v) { return kTissue.energy(asF(v)); },
+                                           [](const Eigen::VectorXd& v) { return flat(kTissue.stress(asF(v))); }, p,
+                                           FdTolerance{1e-7, 1e-7}));
   }
 }
 
@@ -68,14 +70,10 @@ TEST(NeoHookean, StressDerivativeIsStressJacobian) {
   for (int trial = 0; trial < 20; ++trial) {
     const Eigen::Matrix3d F = randomF(rng, 0.4);
     const Matrix9d A = kTissue.stressDerivative(F, false);
-    const double h = 1e-6;
-    for (int j = 0; j < 9; ++j) {
-      Eigen::Matrix3d Fp = F, Fm = F;
-      Fp.data()[j] += h;
-      Fm.data()[j] -= h;
-      const Eigen::Matrix3d dP = (kTissue.stress(Fp) - kTissue.stress(Fm)) / (2 * h);
-      for (int i = 0; i < 9; ++i) EXPECT_NEAR(A(i, j), dP.data()[i], 1e-6 * (1 + A.norm())) << trial;
-    }
+    EXPECT_TRUE(test::jacobianMatchesFunction(
+        [](const Eigen::VectorXd& v) { return flat(kTissue.stress(asF(v))); },
+        [](const Eigen::VectorXd& v) { return Eigen::MatrixXd(kTissue.stressDerivative(asF(v), false)); },
+        FdPoint{"F of trial " + std::to_string(trial), flat(F)}, FdTolerance{0, 1e-6 * (1 + A.norm())}));
     EXPECT_LT((A - A.transpose()).norm(), 1e-12 * A.norm());
   }
 }
@@ -184,38 +182,41 @@ class ElementTest : public ::testing::Test {
     for (int i = 0; i < x.size(); ++i) x.data()[i] += u(rng);
     return x;
   }
+  // Element e's 12 unknowns as a finite-difference point: its nodes' positions in x.
+  FdPoint elementPoint(int e, const Eigen::Matrix3Xd& x) const {
+    FdPoint p{"element " + std::to_string(e), Eigen::VectorXd(12)};
+    for (int r = 0; r < 12; ++r) p.x[r] = x(r % 3, mesh.tets(r / 3, e));
+    return p;
+  }
+  Eigen::Matrix3Xd withElement(int e, const Eigen::Matrix3Xd& x, const Eigen::VectorXd& v) const {
+    Eigen::Matrix3Xd out = x;
+    for (int r = 0; r < 12; ++r) out(r % 3, mesh.tets(r / 3, e)) = v[r];
+    return out;
+  }
 };
 
 TEST_F(ElementTest, GradientMatchesFiniteDifferences) {
   const Eigen::Matrix3Xd x = deformed();
   for (int e = 0; e < mesh.numTets(); ++e) {
     ASSERT_GT(energy.deformationGradient(e, x).determinant(), 0.0);
-    const Vector12d g = energy.elementGradient(e, x);
-    for (int r = 0; r < 12; ++r) {
-      Eigen::Matrix3Xd xp = x, xm = x;
-      const int node = mesh.tets(r / 3, e);
-      const double h = 1e-6;
-      xp(r % 3, node) += h;
-      xm(r % 3, node) -= h;
-      const double fd = (energy.elementEnergy(e, xp) - energy.elementEnergy(e, xm)) / (2 * h);
-      EXPECT_NEAR(g[r], fd, 1e-7 * (1 + std::abs(fd)));
-    }
+    EXPECT_TRUE(test::gradientMatchesValue(
+        [&](const Eigen::VectorXd& v) { return energy.elementEnergy(e, withElement(e, x, v)); },
+        [&](const Eigen::VectorXd& v) { return Eigen::VectorXd(energy.elementGradient(e, withElement(e, x, v))); },
+        elementPoint(e, x), FdTolerance{1e-7, 1e-7}));
   }
 }
 
+// Each entry within 1e-6 (1 + |H|) / sqrt(12), so each column within 1e-6 (1 + |H|).
 TEST_F(ElementTest, HessianMatchesFiniteDifferences) {
   const Eigen::Matrix3Xd x = deformed();
   for (int e = 0; e < mesh.numTets(); ++e) {
-    const Matrix12d H = energy.elementHessian(e, x, false);
-    for (int c = 0; c < 12; ++c) {
-      Eigen::Matrix3Xd xp = x, xm = x;
-      const int node = mesh.tets(c / 3, e);
-      const double h = 1e-6;
-      xp(c % 3, node) += h;
-      xm(c % 3, node) -= h;
-      const Vector12d fd = (energy.elementGradient(e, xp) - energy.elementGradient(e, xm)) / (2 * h);
-      EXPECT_LT((H.col(c) - fd).norm(), 1e-6 * (1 + H.norm())) << "element " << e << " column " << c;
-    }
+    const double tolerance = 1e-6 * (1 + energy.elementHessian(e, x, false).norm()) / std::sqrt(12.0);
+    EXPECT_TRUE(test::jacobianMatchesFunction(
+        [&](const Eigen::VectorXd& v) { return Eigen::VectorXd(energy.elementGradient(e, withElement(e, x, v))); },
+        [&](const Eigen::VectorXd& v) {
+          return Eigen::MatrixXd(energy.elementHessian(e, withElement(e, x, v), false));
+        },
+        elementPoint(e, x), FdTolerance{0, tolerance}));
   }
 }
 
@@ -241,14 +242,16 @@ TEST_F(ElementTest, GradientOfAnInvertedElementIsAnError) {
 TEST_F(ElementTest, TotalGradientSumsElements) {
   const Eigen::Matrix3Xd x = deformed();
   const Eigen::Matrix3Xd g = energy.gradient(x);
-  const double h = 1e-6;
-  for (int i = 0; i < mesh.numNodes(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      Eigen::Matrix3Xd xp = x, xm = x;
-      xp(c, i) += h;
-      xm(c, i) -= h;
-      EXPECT_NEAR(g(c, i), (energy.energy(xp) - energy.energy(xm)) / (2 * h), 1e-6);
-    }
+  const auto positions = [](const Eigen::VectorXd& v) {
+    return Eigen::Matrix3Xd(Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, v.size() / 3));
+  };
+  EXPECT_TRUE(test::gradientMatchesValue(
+      [&](const Eigen::VectorXd& v) { return energy.energy(positions(v)); },
+      [&](const Eigen::VectorXd& v) {
+        const Eigen::Matrix3Xd gv = energy.gradient(positions(v));
+        return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(gv.data(), gv.size()));
+      },
+      FdPoint{"deformed box", Eigen::Map<const Eigen::VectorXd>(x.data(), x.size())}, FdTolerance{0, 1e-6}));
   // Internal forces are balanced: no net force on a free body.
   EXPECT_LT(g.rowwise().sum().norm(), 1e-12);
 }

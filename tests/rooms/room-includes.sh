@@ -2,10 +2,11 @@
 # The rooms of the engine or of the server and the rooms each may include, so data flows one way.
 # Engine (scene -> model -> solver -> result -> render/export): the engine never includes the
 # server, physics and the solver never include the renderer, the renderer takes images and solve
-# states but not the phantom or the coupling. Server (cli -> net -> session -> jobs -> cases ->
-# util): the commands assemble the network, the network serves sessions, sessions queue jobs, jobs
-# solve cases; each room may include the engine's rooms. Prints every include that breaks the map,
-# and a room the map does not know; exits 1 if there is any.
+# states but not the phantom or the coupling. Server (cli -> net -> session -> schedule -> jobs ->
+# cases -> util): the commands assemble the network, the network serves sessions, sessions run
+# their work on the schedule's threads and queue jobs, jobs solve cases; each room may include
+# the engine's rooms. Prints every include that breaks the map, and a room the map does not know;
+# exits 1 if there is any.
 # Usage: room-includes.sh <engine directory> | room-includes.sh --server <server directory>
 if [ "$1" = "--server" ]; then
   kind=server
@@ -22,9 +23,10 @@ allowed() {
       util) echo "" ;;
       cases) echo "util" ;;
       jobs) echo "cases util" ;;
-      session) echo "jobs cases util" ;;
-      net) echo "session jobs cases util" ;;
-      cli) echo "net session jobs cases util" ;;
+      schedule) echo "jobs cases util" ;;
+      session) echo "schedule jobs cases util" ;;
+      net) echo "session schedule jobs cases util" ;;
+      cli) echo "net session schedule jobs cases util" ;;
       *) echo "?" ;;
     esac
     return
@@ -37,7 +39,7 @@ allowed() {
     volume) echo "mesh io math" ;;
     scene) echo "mesh meshing io system volume math" ;;
     phantom) echo "mesh meshing io system image volume math" ;;
-    contact) echo "mesh scene math" ;;
+    contact) echo "mesh scene physics math" ;;
     solver) echo "mesh physics scene contact math" ;;
     eval) echo "mesh physics scene contact solver phantom system math" ;;
     planning) echo "mesh physics scene contact solver eval math" ;;

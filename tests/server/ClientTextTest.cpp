@@ -49,6 +49,7 @@ TEST(ClientText, PointersEscapeTheirKeys) {
     r.rejectUnknown();
     FAIL() << "an unknown field";
   } catch (const ProtocolError& e) {
+    EXPECT_EQ(e.code, "unknown_field");
     EXPECT_EQ(e.path, "/~1x");
     EXPECT_EQ(std::string(e.what()).rfind("/~1x: ", 0), 0u) << e.what();
   }
@@ -68,12 +69,14 @@ TEST(ClientText, NumbersReportedAsSent) {
     (void)r.number("mm", 0, 1, 2, "mm");
     FAIL();
   } catch (const ProtocolError& e) {
+    EXPECT_EQ(e.code, "out_of_range");
     EXPECT_NE(std::string(e.what()).find("0.1 mm is outside"), std::string::npos) << e.what();
   }
   try {
     (void)r.optionalInteger("small", 1, 10);
     FAIL();
   } catch (const ProtocolError& e) {
+    EXPECT_EQ(e.code, "out_of_range");
     EXPECT_NE(std::string(e.what()).find("-3 is outside"), std::string::npos) << e.what();
   }
 }

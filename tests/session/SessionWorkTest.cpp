@@ -9,10 +9,10 @@
 
 #include "TestWait.hpp"
 #include "jobs/JobQueue.hpp"
+#include "schedule/SerialWork.hpp"
 #include "session/ExportStore.hpp"
 #include "session/PlanStore.hpp"
 #include "session/ProtocolError.hpp"
-#include "session/SerialWork.hpp"
 
 namespace orthosim::server {
 namespace {

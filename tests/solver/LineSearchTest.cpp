@@ -4,6 +4,7 @@
 
 #include <limits>
 
+#include "physics/LargestValidFraction.hpp"
 #include "solver/NewtonSolver.hpp"
 
 namespace orthosim {

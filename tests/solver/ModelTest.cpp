@@ -125,6 +125,9 @@ TEST(Model, SessionsSharingAPrototypeSolveInParallelLikeAModelBuiltAlone) {
   EXPECT_EQ(&a.restFactor(), &b.restFactor());
   EXPECT_NE(&a.factor(), &b.factor());
   EXPECT_NE(a.contact(), b.contact());  // its own memo
+  ASSERT_EQ(a.terms().size(), 2u);      // the soft tissue, then the session's own contact
+  EXPECT_EQ(a.terms()[0], &prototype.energy());
+  EXPECT_EQ(a.terms()[1], a.contact());
   SolveResult ra, rb;
   std::thread ta([&] { ra = solveScene(a); }), tb([&] { rb = solveScene(b); });
   ta.join();

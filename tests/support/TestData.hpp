@@ -5,6 +5,7 @@
 //    there missing data means a broken checkout or build and a skip would hide it;
 //  - data only in ../shared (the ArtiSynth face, not in the repository): the test always skips,
 //    saying exactly which files are missing, since CI's clone may not have ../shared.
+// A tool or permission the machine lacks (readelf, mounting a tmpfs) follows the first rule.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -42,6 +43,18 @@ inline std::string missingFiles(std::initializer_list<std::filesystem::path> fil
     } else {                                                                           \
       GTEST_SKIP() << (what);                                                          \
     }                                                                                  \
+  } while (0)
+
+// For a tool or permission the test needs from the machine, which CI provides (Debian 12 with the
+// packages of scripts/setup-deps.sh, run as root): skips the test saying what is missing, or fails
+// it under CI=true, where a skip would hide a broken setup. Returns from the test body like GTEST_SKIP.
+#define SKIP_OR_FAIL_FOR_MISSING_PREREQUISITE(what)                                                     \
+  do {                                                                                                  \
+    if (::orthosim::test::runningInCi()) {                                                              \
+      GTEST_FAIL() << (what) << " (CI=true: the CI machine provides it, so it is never skipped there)"; \
+    } else {                                                                                            \
+      GTEST_SKIP() << (what);                                                                           \
+    }                                                                                                   \
   } while (0)
 
 // For data only in ../shared: skips (also under CI=true) when a file is missing, naming each one.

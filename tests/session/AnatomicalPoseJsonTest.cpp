@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "math/Angles.hpp"
-#include "session/AnatomicalPose.hpp"
+#include "session/AnatomicalPoseJson.hpp"
 
 namespace orthosim::server {
 namespace {

@@ -1,4 +1,4 @@
-#include "session/AnatomicalPose.hpp"
+#include "session/AnatomicalPoseJson.hpp"
 
 #include "planning/FaceRequestJson.hpp"
 

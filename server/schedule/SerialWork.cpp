@@ -1,4 +1,4 @@
-#include "session/SerialWork.hpp"
+#include "schedule/SerialWork.hpp"
 
 #include <algorithm>
 #include <boost/asio/post.hpp>

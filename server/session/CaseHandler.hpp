@@ -1,0 +1,45 @@
+#pragma once
+// The case of a session (docs/protocol.md, "Cases"): `list_cases`, `open` (its models built or
+// taken built on the session's serial work, with progress), `describe`, and `edit_case`, which
+// rewrites an imported patient's case file and opens it again (session/CaseEditMessage.cpp).
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cases/CaseLibrary.hpp"
+#include "schedule/SerialWork.hpp"
+#include "session/FrameHandler.hpp"
+#include "session/MessageReader.hpp"
+#include "session/PreviewScheduler.hpp"
+#include "session/SessionChannel.hpp"
+#include "session/SessionState.hpp"
+
+namespace orthosim::server {
+
+class CaseHandler {
+ public:
+  CaseHandler(SessionState& state, const SessionChannel& channel, SerialWork& work, FrameHandler& frames,
+              PreviewScheduler& previews, CaseLibrary& cases);
+
+  void listCases(MessageReader& r, const nlohmann::json& id);
+  void open(MessageReader& r, const nlohmann::json& id);
+  void describe(MessageReader& r, const nlohmann::json& id);
+  void editCase(MessageReader& r, const nlohmann::json& id);
+
+ private:
+  // Replies "opening", then builds (or takes the built) models on the session's work queue with
+  // "open_progress", then "opened".
+  void startOpening(const std::string& caseId, const nlohmann::json& id);
+  // The case's models and fragments; throws what building them throws.
+  std::shared_ptr<OpenCase> build(const std::string& caseId, const nlohmann::json& id, const std::atomic<bool>& cancel);
+  void opened(const std::shared_ptr<OpenCase>& c, double seconds, const nlohmann::json& id);
+  nlohmann::json caseJson(const OpenCase& c) const;  // with the state's mutex held
+
+  SessionState& state_;
+  const SessionChannel& channel_;
+  SerialWork& work_;
+  FrameHandler& frames_;
+  PreviewScheduler& previews_;
+  CaseLibrary& cases_;
+};
+
+}  // namespace orthosim::server
