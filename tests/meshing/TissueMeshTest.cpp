@@ -97,9 +97,9 @@ TEST(TissueMesh, BadInputIsNamed) {
   }
 }
 
-// The figures for the record (not run by default: ~1 min): an 82k-triangle skin with 20k-triangle
-// bones at 3000 and 20000 skin triangles. Run with --gtest_also_run_disabled_tests.
-TEST(TissueMesh, DISABLED_Timing) {
+// The stages' times for the record (label perf, outside the default run: about a minute): an
+// 82k-triangle skin with 20k-triangle bones meshed at 3000 and 20000 skin triangles.
+TEST(TissueMeshPerf, StageTimesAtCoarseAndFineTargets) {
   const test::TissueScene scene = test::tissueScene(6, 5);
   for (int target : {3000, 20000}) {
     TissueMeshOptions o;
