@@ -40,7 +40,7 @@ void JobHandler::band(MessageReader& r, const json& id) {
   } catch (const std::invalid_argument& e) {
     throw ProtocolError("bad_value", std::string("/range_scale: ") + e.what(), "/range_scale");
   }
-  if (!services_.options.redisUrl.empty()) {  // `serve --redis`: on the workers, as the fine jobs
+  if (services_.onWorkers) {  // as the fine jobs
     submitRedisBand(s, resolution, options, solves, id);
     return;
   }

@@ -30,7 +30,8 @@ struct JobServices {
   FineJobs& fineJobs;
   JobQueue& localJobs;
   CaseLibrary& cases;
-  const PlanningOptions& options;  // the data folder, the pose limits, Redis or not
+  const PlanningOptions& options;  // the data folder, the pose limits
+  bool onWorkers;                  // `serve --redis`: fine and band jobs run on the workers
 };
 
 class JobHandler {

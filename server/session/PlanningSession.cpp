@@ -20,8 +20,10 @@ PlanningSession::PlanningSession(PlanningService& service, Send send)
       exports_(state_, channel_, work_, service.exports(), id_),
       cases_(state_, channel_, work_, frames_, previews_, service.cases()),
       poses_(state_, channel_, previews_, service.limits()),
-      jobs_(state_, channel_, work_, frames_, exports_,
-            JobServices{service.fineJobs(), service.localJobs(), service.cases(), service.options()}, id_),
+      jobs_(
+          state_, channel_, work_, frames_, exports_,
+          JobServices{service.fineJobs(), service.localJobs(), service.cases(), service.options(), service.redisJobs()},
+          id_),
       plans_(state_, channel_, previews_, service.plans(), service.limits()),
       faces_(state_, channel_, work_, frames_, previews_, service.limits()) {}
 
