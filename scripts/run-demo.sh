@@ -9,7 +9,4 @@ cd "$(dirname "$0")/.."
 bash scripts/setup-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$(nproc)" --target orthosim
-# OpenMP threads that wait by sleeping, not spinning: on a shared or busy machine libgomp's default
-# spin-wait makes each assembly up to 10x slower (docs/benchmarks.md).
-export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-PASSIVE}"
 exec ./build/server/orthosim serve --port "${PORT:-8080}" --data "${1:-orthosim-demo}"

@@ -5,6 +5,7 @@
 
 #include "contact/RigidSurface.hpp"
 #include "eval/VertexAreas.hpp"
+#include "system/ThreadBudget.hpp"
 
 namespace orthosim {
 namespace {
@@ -27,7 +28,7 @@ Eigen::VectorXd signedDistancesTo(const Eigen::Matrix3Xd& points, const SurfaceM
   const RigidSurface surface(reference);
   Eigen::VectorXd d(points.cols());
   // RigidSurface::query is thread-safe.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(threadsPerSolve()) schedule(static)
   for (Eigen::Index i = 0; i < points.cols(); ++i) d[i] = surface.query(points.col(i)).distance;
   return d;
 }

@@ -13,6 +13,7 @@
 #include "mesh/Barycentric.hpp"
 #include "mesh/BoundaryFaces.hpp"
 #include "mesh/SurfaceDistance.hpp"
+#include "system/ThreadBudget.hpp"
 
 namespace orthosim {
 
@@ -257,7 +258,7 @@ PointEmbedding embedPoints(const TetMesh& mesh, const Eigen::Matrix3Xd& points, 
     out.weights_.col(i) = bary;
   };
   std::vector<char> outside(n, 0);
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for num_threads(threadsPerSolve()) schedule(dynamic, 256)
   for (int i = 0; i < n; ++i) {
     Eigen::Vector4d bary = Eigen::Vector4d::Zero();
     const int e = grid.containing(points.col(i), options.insideTolerance, bary);
@@ -275,7 +276,7 @@ PointEmbedding embedPoints(const TetMesh& mesh, const Eigen::Matrix3Xd& points, 
   if (away.empty()) return out;
   const NearestTet nearest(mesh);
   Eigen::VectorXd refusedAt = Eigen::VectorXd::Constant(n, -1.0);
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for num_threads(threadsPerSolve()) schedule(dynamic, 256)
   for (size_t k = 0; k < away.size(); ++k) {
     const int i = away[k];
     Eigen::Vector4d bary = Eigen::Vector4d::Zero();

@@ -7,6 +7,7 @@
 
 #include "math/Angles.hpp"
 #include "phantom/GeodesicSphere.hpp"
+#include "system/ThreadBudget.hpp"
 
 namespace orthosim::phantom {
 namespace {
@@ -97,7 +98,7 @@ SurfaceMesh meshStarSurface(const StarSurfaceSpec& s) {
   Eigen::Matrix3Xd x(3, n);
   Eigen::VectorXd r(n);
   int failed = -1;  // exceptions must not leave an OpenMP loop: note the ray, rethrow after
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(threadsPerSolve()) schedule(static)
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector3d onSpread = s.spreadCentre + s.spreadAxes.cwiseProduct(sphere.directions.col(i));
     const Eigen::Vector3d d = (onSpread - s.centre).normalized();
@@ -130,7 +131,7 @@ SurfaceMesh meshStarSurface(const StarSurfaceSpec& s) {
   for (int iter = 0; iter < s.relaxIterations; ++iter) {
     Eigen::Matrix3Xd next(3, n);
     Eigen::VectorXd rNext(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(threadsPerSolve()) schedule(static)
     for (int i = 0; i < n; ++i) {
       Eigen::Vector3d avg = Eigen::Vector3d::Zero();
       for (int j : nbr[i]) avg += x.col(j);

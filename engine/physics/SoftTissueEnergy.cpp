@@ -7,6 +7,7 @@
 #include <string>
 
 #include "physics/LargestValidFraction.hpp"
+#include "system/ThreadBudget.hpp"
 
 namespace orthosim {
 namespace {
@@ -53,7 +54,7 @@ double SoftTissueEnergy::elementEnergy(int e, const Eigen::Matrix3Xd& x) const {
 double SoftTissueEnergy::energy(const Eigen::Matrix3Xd& x) const {
   double sum = 0.0;
   const int m = static_cast<int>(active_.size());
-#pragma omp parallel for reduction(+ : sum) schedule(static)
+#pragma omp parallel for num_threads(threadsPerSolve()) reduction(+ : sum) schedule(static)
   for (int k = 0; k < m; ++k) sum += elementEnergy(active_[k], x);
   return sum;  // an inverted element contributes +inf
 }
@@ -63,7 +64,7 @@ double SoftTissueEnergy::roundingScale() const { return material_.mu * activeVol
 double SoftTissueEnergy::minDetF(const Eigen::Matrix3Xd& x) const {
   double minDet = std::numeric_limits<double>::infinity();
   const int m = static_cast<int>(active_.size());
-#pragma omp parallel for reduction(min : minDet) schedule(static)
+#pragma omp parallel for num_threads(threadsPerSolve()) reduction(min : minDet) schedule(static)
   for (int k = 0; k < m; ++k) minDet = std::min(minDet, deformationGradient(active_[k], x).determinant());
   return minDet;
 }

@@ -4,6 +4,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "system/ThreadBudget.hpp"
+
 namespace orthosim {
 
 namespace {
@@ -24,6 +26,11 @@ class SupernodalLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<dou
     m_factorizationIsOk = false;
     return true;
   }
+  std::size_t entries() const {
+    const cholmod_factor* f = m_cholmodFactor;
+    if (!f) return 0;
+    return f->is_super ? f->xsize : f->nzmax;
+  }
 };
 
 }  // namespace
@@ -42,6 +49,7 @@ CholmodFactor::CholmodFactor() : impl_(std::make_unique<Impl>()) {
 CholmodFactor::~CholmodFactor() = default;
 
 void CholmodFactor::analyze(const Eigen::SparseMatrix<double>& lower) {
+  limitLibraryThreads();
   // Nested dissection (METIS) orders the reduced Hessian of a tetrahedral mesh with about a third
   // fewer flops than AMD, which CHOLMOD's default keeps for these matrices (its fill test does not
   // try METIS): 0.64 vs 0.87 GFlop per coarse-phantom factorisation, 2.3 vs 4.1 on the fine one.
@@ -65,6 +73,7 @@ void CholmodFactor::analyzeLike(const CholmodFactor& other) {
 }
 
 bool CholmodFactor::factorize(const Eigen::SparseMatrix<double>& lower) {
+  limitLibraryThreads();
   impl_->llt.factorize(lower);
   factored_ = impl_->llt.info() == Eigen::Success;
   return factored_;
@@ -72,6 +81,7 @@ bool CholmodFactor::factorize(const Eigen::SparseMatrix<double>& lower) {
 
 Eigen::VectorXd CholmodFactor::solve(const Eigen::VectorXd& rhs) const {
   if (!factored_) throw std::logic_error("CholmodFactor::solve without a valid factorisation");
+  limitLibraryThreads();
   const std::lock_guard<std::mutex> lock(impl_->solving);
   return impl_->llt.solve(rhs);
 }
@@ -81,5 +91,7 @@ Eigen::MatrixXd CholmodFactor::solveMany(const Eigen::MatrixXd& rhs) const {
   const std::lock_guard<std::mutex> lock(impl_->solving);
   return impl_->llt.solve(rhs);
 }
+
+std::size_t CholmodFactor::entries() const { return impl_->llt.entries(); }
 
 }  // namespace orthosim

@@ -3,6 +3,7 @@
 // supernodes) is done once per model, the numeric factorisation once per Newton iteration.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <cstddef>
 #include <memory>
 
 namespace orthosim {
@@ -25,6 +26,9 @@ class CholmodFactor {
   // Several right-hand sides at once (one pass over the factor: far faster than column by column).
   Eigen::MatrixXd solveMany(const Eigen::MatrixXd& rhs) const;
   bool valid() const { return factored_; }
+  // Numeric entries of the factor L, known from the analysis on: what a factorisation of this
+  // pattern holds (for memory estimates); 0 before the analysis.
+  std::size_t entries() const;
   void invalidate() { factored_ = false; }
 
  private:

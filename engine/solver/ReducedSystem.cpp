@@ -1,4 +1,5 @@
 #include "solver/ReducedSystem.hpp"
+#include "system/ThreadBudget.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -165,7 +166,7 @@ void ReducedSystem::assemble(const SimState& state, const Eigen::Matrix3Xd& g, b
   std::exception_ptr error;
   for (const auto& color : pattern_->colors) {
     const int count = static_cast<int>(color.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(threadsPerSolve()) schedule(static)
     for (int k = 0; k < count; ++k) {
       try {
         scatterSimple(color[k]);

@@ -33,14 +33,14 @@ allowed() {
   fi
   case $1 in
     math | image | system) echo "" ;;
-    mesh) echo "math" ;;
+    mesh) echo "system math" ;;
     meshing | io) echo "mesh math" ;;
-    physics) echo "mesh math" ;;
+    physics) echo "mesh system math" ;;
     volume) echo "mesh io math" ;;
     scene) echo "mesh meshing io system volume math" ;;
     phantom) echo "mesh meshing io system image volume math" ;;
     contact) echo "mesh scene physics math" ;;
-    solver) echo "mesh physics scene contact math" ;;
+    solver) echo "mesh physics scene contact system math" ;;
     eval) echo "mesh physics scene contact solver phantom system math" ;;
     planning) echo "mesh physics scene contact solver eval math" ;;
     render) echo "mesh io scene eval image math solver/SimState.hpp" ;;
