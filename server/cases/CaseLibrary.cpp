@@ -9,6 +9,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "cases/ModelSize.hpp"
 #include "eval/RealFace.hpp"
 #include "phantom/PhantomCase.hpp"
 #include "system/AtomicFile.hpp"
@@ -27,10 +28,12 @@ std::string fileIdentity(const fs::path& path) {
          std::to_string(s.st_mtim.tv_sec) + "." + std::to_string(s.st_mtim.tv_nsec);
 }
 
+ModelPart partOf(Resolution resolution) { return resolution == Resolution::Fine ? ModelPart::Fine : ModelPart::Coarse; }
+
 }  // namespace
 
-CaseLibrary::CaseLibrary(std::vector<CaseEntry> catalog, fs::path dataDir)
-    : catalog_(std::move(catalog)), dataDir_(std::move(dataDir)) {}
+CaseLibrary::CaseLibrary(std::vector<CaseEntry> catalog, fs::path dataDir, std::size_t modelBudgetBytes)
+    : catalog_(std::move(catalog)), dataDir_(std::move(dataDir)), models_(modelBudgetBytes) {}
 
 void CaseLibrary::discoverWith(Discover discover) {
   const std::lock_guard<std::mutex> lock(catalogMutex_);
@@ -132,47 +135,15 @@ std::string CaseLibrary::caseFile(const CaseEntry& entry) {
   return file.string();
 }
 
-std::shared_ptr<const CaseModel> CaseLibrary::build(const CaseEntry& entry, Resolution resolution) {
+ModelCache::Built CaseLibrary::build(const CaseEntry& entry, Resolution resolution) {
   CaseTissueOptions options;
   options.cacheDir = (dataDir_ / "cache").string();
-  return std::make_shared<const CaseModel>(buildCaseModel(loadCaseFile(caseFile(entry)), resolution, options));
+  auto model = std::make_shared<const CaseModel>(buildCaseModel(loadCaseFile(caseFile(entry)), resolution, options));
+  const std::size_t bytes = estimatedBytes(*model);
+  return {std::move(model), bytes};
 }
 
-template <class T, class Key, class Build>
-std::shared_ptr<const T> CaseLibrary::once(std::map<Key, std::shared_future<std::shared_ptr<const T>>>& cache,
-                                           const Key& key, const Build& build) {
-  std::promise<std::shared_ptr<const T>> promise;
-  std::shared_future<std::shared_ptr<const T>> future;
-  bool builder = false;
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    auto it = cache.find(key);
-    if (it == cache.end()) {
-      future = promise.get_future().share();
-      cache.emplace(key, future);
-      builder = true;
-    } else {
-      future = it->second;
-    }
-  }
-  if (builder) {
-    try {
-      promise.set_value(build());
-    } catch (...) {
-      promise.set_exception(std::current_exception());
-      const std::lock_guard<std::mutex> lock(mutex_);
-      cache.erase(key);
-    }
-  }
-  return future.get();
-}
-
-void CaseLibrary::invalidate(const std::string& id) {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  models_.erase({id, Resolution::Coarse});
-  models_.erase({id, Resolution::Fine});
-  prototypes_.erase(id);
-}
+void CaseLibrary::invalidate(const std::string& id) { models_.forget(id); }
 
 void CaseLibrary::forgetIfReplaced(const CaseEntry& entry) {
   if (entry.caseFile.empty()) return;  // built-in cases: written by the servers, never edited
@@ -180,11 +151,7 @@ void CaseLibrary::forgetIfReplaced(const CaseEntry& entry) {
   const std::lock_guard<std::mutex> lock(mutex_);
   std::string& builtFrom = builtFrom_[entry.id];
   if (builtFrom == identity) return;
-  if (!builtFrom.empty()) {  // edited since, here or by another process: build it again
-    models_.erase({entry.id, Resolution::Coarse});
-    models_.erase({entry.id, Resolution::Fine});
-    prototypes_.erase(entry.id);
-  }
+  if (!builtFrom.empty()) models_.forget(entry.id);  // edited since, here or by another process: build it again
   builtFrom = identity;  // read before the build: an edit during it is caught by the next call
 }
 
@@ -192,12 +159,16 @@ std::shared_ptr<const CaseModel> CaseLibrary::model(const std::string& id, Resol
   const std::optional<CaseEntry> entry = find(id);
   if (!entry) throw std::invalid_argument("unknown case '" + id + "'");
   forgetIfReplaced(*entry);
-  return once(models_, std::make_pair(id, resolution), [&] { return build(*entry, resolution); });
+  return models_.get<CaseModel>(ModelKey{id, partOf(resolution)}, [&] { return build(*entry, resolution); });
 }
 
 std::shared_ptr<const Model> CaseLibrary::coarsePrototype(const std::string& id) {
   const std::shared_ptr<const CaseModel> coarse = model(id, Resolution::Coarse);
-  return once(prototypes_, id, [&] { return std::make_shared<const Model>(coarse->scene); });
+  return models_.get<Model>(ModelKey{id, ModelPart::Prototype}, [&]() -> ModelCache::Built {
+    auto prototype = std::make_shared<const Model>(coarse->scene);
+    const std::size_t bytes = estimatedBytes(*prototype);
+    return {std::move(prototype), bytes};
+  });
 }
 
 CaseSpec CaseLibrary::spec(const std::string& id) {
@@ -207,9 +178,11 @@ CaseSpec CaseLibrary::spec(const std::string& id) {
 }
 
 bool CaseLibrary::isBuilt(const std::string& id, Resolution resolution) const {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  auto it = models_.find({id, resolution});
-  return it != models_.end() && it->second.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+  return models_.resident(ModelKey{id, partOf(resolution)});
+}
+
+bool CaseLibrary::isResident(const std::string& id, ModelPart part) const {
+  return models_.resident(ModelKey{id, part});
 }
 
 }  // namespace orthosim::server

@@ -3,12 +3,13 @@
 // a built CaseModel is immutable, each session solves on its own Model of it, made from one coarse
 // prototype per case whose immutable parts it shares. Phantom cases are
 // written under the data folder the first time they are asked for; tissue meshes are cached there.
+// Built models are kept within a memory budget (cases/ModelCache): one no session or job holds is
+// evicted, least recently used first, and built again (its mesh read from the cache) when asked for.
 // Several processes may share the data folder (server replicas with --redis, workers): cases
 // another one adds are found there (discoverWith), and a case whose file another one changed (an
 // edit) is built again: a model is kept only while its case file is the one it was built from.
 #include <filesystem>
 #include <functional>
-#include <future>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "cases/CaseCatalog.hpp"
+#include "cases/ModelCache.hpp"
 #include "scene/CaseModel.hpp"
 #include "solver/Model.hpp"
 
@@ -24,7 +26,9 @@ namespace orthosim::server {
 
 class CaseLibrary {
  public:
-  CaseLibrary(std::vector<CaseEntry> catalog, std::filesystem::path dataDir);
+  // modelBudgetBytes: the estimated bytes of built models kept (cases/ModelCache).
+  CaseLibrary(std::vector<CaseEntry> catalog, std::filesystem::path dataDir,
+              std::size_t modelBudgetBytes = kDefaultModelMemoryMiB << 20);
 
   // The cases now: the catalog grows while the server runs (patients imported from the page).
   std::vector<CaseEntry> catalog() const;
@@ -46,6 +50,9 @@ class CaseLibrary {
   // building throws (SceneError naming the case file and the defect).
   std::shared_ptr<const CaseModel> model(const std::string& id, Resolution resolution);
   bool isBuilt(const std::string& id, Resolution resolution) const;
+  // Whether the model is kept now (built and not evicted), and the estimated bytes of all kept.
+  bool isResident(const std::string& id, ModelPart part) const;
+  std::size_t residentBytes() const { return models_.residentBytes(); }
   // The case file as it is on disk now (written first for a built-in case), without building
   // anything: what a worker hashes to tell whether a job was planned on this case. Throws as
   // model() does.
@@ -63,21 +70,15 @@ class CaseLibrary {
   // built from (another replica edited it).
   void forgetIfReplaced(const CaseEntry& entry);
   std::string artisynthCaseFile(const CaseEntry& entry);
-  std::shared_ptr<const CaseModel> build(const CaseEntry& entry, Resolution resolution);
-  // The cached value of `key`, or built by `build` once while other callers wait for it; a failed
-  // build is not kept.
-  template <class T, class Key, class Build>
-  std::shared_ptr<const T> once(std::map<Key, std::shared_future<std::shared_ptr<const T>>>& cache, const Key& key,
-                                const Build& build);
+  ModelCache::Built build(const CaseEntry& entry, Resolution resolution);
 
   mutable std::mutex catalogMutex_;
   mutable std::vector<CaseEntry> catalog_;  // grows by discover() in catalog() and find()
   Discover discover_;
   std::filesystem::path dataDir_;
-  mutable std::mutex mutex_;
-  std::mutex writeMutex_;  // writing a built-in case's files
-  std::map<std::pair<std::string, Resolution>, std::shared_future<std::shared_ptr<const CaseModel>>> models_;
-  std::map<std::string, std::shared_future<std::shared_ptr<const Model>>> prototypes_;
+  mutable std::mutex mutex_;  // builtFrom_
+  std::mutex writeMutex_;     // writing a built-in case's files
+  ModelCache models_;
   std::map<std::string, std::string> builtFrom_;  // case id -> its case file's identity (fileIdentity())
 };
 

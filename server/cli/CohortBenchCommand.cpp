@@ -149,6 +149,48 @@ CohortRedisPlan cohortRedisPlan(const CohortBenchOptions& opt) {
   return plan;
 }
 
+// Where a round's wall time went: the workers' busy time each, and its critical path (start-up
+// until the first job starts, the jobs, and after the last job: the bench reading its result and
+// the workers stopping), so that what does not spread over workers shows.
+json roundBreakdown(const std::vector<CohortJobTiming>& jobs, double startedAt, double wall, int workers) {
+  struct Busy {
+    int jobs = 0, cores = 0;
+    double seconds = 0, cpu = 0;
+  };
+  std::map<std::string, Busy> busy;  // per consumer
+  double firstStart = startedAt + wall, lastDone = startedAt, read = 0, total = 0;
+  for (const CohortJobTiming& j : jobs) {
+    Busy& b = busy[j.consumer];
+    ++b.jobs;
+    b.seconds += j.busySeconds;
+    b.cpu += j.cpuSeconds;
+    b.cores = j.cores;
+    total += j.busySeconds;
+    read += j.readSeconds;
+    if (j.startedAt > 0) firstStart = std::min(firstStart, j.startedAt);
+    lastDone = std::max(lastDone, j.doneAt);
+  }
+  json perWorker = json::array();
+  std::printf("  busy per worker:");
+  for (const auto& [consumer, b] : busy) {
+    std::printf(" %s (%d core%s) %d job%s %.1f s, CPU %.1f s;", consumer.c_str(), b.cores, b.cores == 1 ? "" : "s",
+                b.jobs, b.jobs == 1 ? "" : "s", b.seconds, b.cpu);
+    perWorker.push_back(
+        {{"consumer", consumer}, {"cores", b.cores}, {"jobs", b.jobs}, {"busy_s", b.seconds}, {"cpu_s", b.cpu}});
+  }
+  const double startUp = std::max(0.0, firstStart - startedAt), span = std::max(0.0, lastDone - firstStart);
+  const double after = std::max(0.0, wall - startUp - span);
+  std::printf(
+      "\n  critical path: start-up %.1f s, jobs %.1f s (all workers' busy time / %d: %.1f s), after the last job "
+      "%.1f s (reading its result); the bench read results for %.1f s\n",
+      startUp, span, workers, total / std::max(1, workers), after, read);
+  return {{"busy_per_worker", perWorker},
+          {"start_up_s", startUp},
+          {"jobs_s", span},
+          {"after_last_job_s", after},
+          {"bench_reading_s", read}};
+}
+
 // One round of every run: with `workers` > 0 on that many local workers and a fresh data folder
 // (its own tissue cache, so that every round meshes and solves the same), else on the running
 // workers and the bench's data folder; timed.
@@ -159,22 +201,34 @@ std::map<std::string, CohortPatientRuns> runRound(const CohortBenchOptions& opt,
                   : setup.data;
   if (workers > 0) fs::remove_all(dir);
   const std::string loadBefore = loadAverage();
+  const double startedAt = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   const auto t0 = std::chrono::steady_clock::now();
   std::map<std::string, CohortPatientRuns> runs;
+  std::vector<CohortJobTiming> timings;
+  const auto since = [](auto t) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(); };
+  double wall = 0;
   {
     std::optional<LocalWorkers> local;
-    if (workers > 0) local.emplace(opt.redis, dir, workers);
-    runs = runCohortOnRedis(rr.address, setup.cohort, rr.specs, rr.plan, dir);
+    if (workers > 0) local.emplace(opt.redis, dir, workers, opt.pinWorkers);
+    runs = runCohortOnRedis(rr.address, setup.cohort, rr.specs, rr.plan, dir, 60, &timings);
+    // The round's work ends with its last result read; stopping the local workers (up to a second
+    // each, their blocking read) is the bench's doing, not a worker machine's: timed apart.
+    wall = since(t0);
   }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double stopSeconds = since(t0) - wall;
   rr.walls[workers].push_back(wall);
   const std::string loadAfter = loadAverage();
   if (workers > 0)
-    std::printf("round %d: %d worker%s: wall %.1f s, load average %s before, %s after\n", round, workers,
-                workers == 1 ? "" : "s", wall, loadBefore.c_str(), loadAfter.c_str());
+    std::printf("round %d: %d worker%s%s: wall %.1f s (then %.1f s to stop them), load average %s before, %s after\n",
+                round, workers, workers == 1 ? "" : "s", opt.pinWorkers ? " (pinned)" : "", wall, stopSeconds,
+                loadBefore.c_str(), loadAfter.c_str());
+  json breakdown = roundBreakdown(timings, startedAt, wall, std::max(1, workers));
+  breakdown["workers_stop_s"] = stopSeconds;
   std::fflush(stdout);
   rr.rounds.push_back({{"workers", workers > 0 ? json(workers) : json("running")},
+                       {"pinned", workers > 0 && opt.pinWorkers},
                        {"wall_s", wall},
+                       {"breakdown", breakdown},
                        {"load_average_before", loadBefore},
                        {"load_average_after", loadAfter}});
   if (workers > 0) fs::remove_all(dir / "cache");  // tissue meshes: rebuilt by every round
@@ -639,6 +693,9 @@ void addCohortWorkerOptions(CLI::App& cohort, CohortBenchOptions& o) {
       .add_option("--spawn-repeats", o.spawnRepeats,
                   "With --spawn-workers: rounds per count, interleaved (1,2,4,1,2,4,...); median wall times")
       ->check(CLI::Range(1, 20));
+  cohort.add_flag("--pin-workers", o.pinWorkers,
+                  "With --spawn-workers: worker k on one core only (the k-th this process may use, modulo their "
+                  "number), standing in for one-core machines");
 }
 
 }  // namespace

@@ -1,11 +1,13 @@
 #include "cli/CohortOnRedis.hpp"
 
 #include <fcntl.h>
+#include <sched.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -47,13 +49,66 @@ long long groupField(RedisConnection& redis, const char* field) {
   return -1;
 }
 
+double epochSeconds() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+// The worker's side of a job_done: who ran it and for how long (absent from older workers: zero).
+CohortJobTiming jobTiming(const json& reply) {
+  CohortJobTiming t;
+  t.consumer = reply.value("consumer", std::string());
+  t.cores = reply.value("worker_cores", 0);
+  t.busySeconds = reply.value("busy_s", 0.0);
+  t.buildSeconds = reply.value("build_s", 0.0);
+  t.cpuSeconds = reply.value("cpu_s", 0.0);
+  t.startedAt = reply.value("started_at_s", 0.0);
+  t.doneAt = epochSeconds();
+  return t;
+}
+
+// The cores this process may run on, in order.
+std::vector<int> allowedCores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  std::vector<int> cores;
+  if (::sched_getaffinity(0, sizeof set, &set) == 0)
+    for (int c = 0; c < CPU_SETSIZE; ++c)
+      if (CPU_ISSET(c, &set)) cores.push_back(c);
+  return cores;
+}
+
+// Sets this thread's affinity to `core` (a child spawned now inherits it); restores the old one
+// at destruction.
+class PinnedForSpawn {
+ public:
+  explicit PinnedForSpawn(int core) {
+    CPU_ZERO(&saved_);
+    if (core < 0 || ::sched_getaffinity(0, sizeof saved_, &saved_) != 0) return;
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(core, &one);
+    if (::sched_setaffinity(0, sizeof one, &one) != 0)
+      throw std::runtime_error("cannot pin a worker to core " + std::to_string(core) + ": " + std::strerror(errno));
+    pinned_ = true;
+  }
+  ~PinnedForSpawn() {
+    if (pinned_) ::sched_setaffinity(0, sizeof saved_, &saved_);
+  }
+  PinnedForSpawn(const PinnedForSpawn&) = delete;
+  PinnedForSpawn& operator=(const PinnedForSpawn&) = delete;
+
+ private:
+  cpu_set_t saved_;
+  bool pinned_ = false;
+};
+
 }  // namespace
 
 std::map<std::string, CohortPatientRuns> runCohortOnRedis(const server::RedisAddress& address,
                                                           const std::vector<CohortPatient>& patients,
                                                           const std::map<std::string, CaseSpec>& specs,
                                                           const CohortRedisPlan& plan, const fs::path& dataDir,
-                                                          double idleLimit) {
+                                                          double idleLimit, std::vector<CohortJobTiming>* timings) {
   RedisConnection redis(address);
   server::ensureWorkerGroup(redis);
   const std::string benchId = "bench" + server::randomHexId().substr(0, 12);
@@ -123,9 +178,12 @@ std::map<std::string, CohortPatientRuns> runCohortOnRedis(const server::RedisAdd
         continue;
       }
       try {
+        CohortJobTiming timing = jobTiming(reply);
         const fs::path file = dataDir / reply.value("result", std::string());
         server::CohortOutcome o = server::readCohortResult(file, specs.at(job.patient));
         fs::remove(file);
+        timing.readSeconds = epochSeconds() - timing.doneAt;
+        if (timings) timings->push_back(timing);
         std::printf("  %s %s done on a worker: solve %.3f s (%d pending)\n", job.patient.c_str(), job.run.c_str(),
                     o.run.solveSeconds, static_cast<int>(pending.size()));
         std::fflush(stdout);
@@ -149,7 +207,9 @@ std::map<std::string, CohortPatientRuns> runCohortOnRedis(const server::RedisAdd
   return out;
 }
 
-LocalWorkers::LocalWorkers(const std::string& redisUrl, const fs::path& dataDir, int count) {
+LocalWorkers::LocalWorkers(const std::string& redisUrl, const fs::path& dataDir, int count, bool pin) {
+  const std::vector<int> cores = pin ? allowedCores() : std::vector<int>{};
+  if (pin && cores.empty()) throw std::runtime_error("cannot pin the workers: this process's cores are unknown");
   char self[4096] = {};
   const ssize_t len = ::readlink("/proc/self/exe", self, sizeof self - 1);
   if (len <= 0) throw std::runtime_error("cannot find this executable (/proc/self/exe) to start workers");
@@ -161,6 +221,7 @@ LocalWorkers::LocalWorkers(const std::string& redisUrl, const fs::path& dataDir,
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
+    const PinnedForSpawn pinned(pin ? cores[(k - 1) % cores.size()] : -1);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include "cases/CaseCatalog.hpp"
+#include "cases/ModelCache.hpp"
 #include "scene/CaseFile.hpp"
 #include "scene/CaseImport.hpp"
 
@@ -62,9 +63,15 @@ struct SessionsBenchOptions {
   std::string dataDir = "orthosim-bench-data";
   std::string webDir;
   std::string jsonPath;
+  std::vector<int> dragSessions;  // --drag: sessions dragging at once, one round each; empty: the memory bench
+  int backgroundLoad = 0;         // spinning processes beside the server during a drag round
+  double dragSeconds = 6, poseRate = 20;
 };
 // Resident memory with 1, 4, 16 sessions on one case, and the open time (bench sessions).
 int runSessionsBench(const SessionsBenchOptions& options);
+// Sessions dragging a fragment at once (bench sessions --drag): frames/s, pose-to-frame time,
+// release to converged preview, per session.
+int runSessionsDragBench(const SessionsBenchOptions& options);
 
 struct RenderCommandOptions {
   std::string planPath;          // plan file replacing the case's plan; empty: the case's plan
@@ -111,7 +118,8 @@ struct CohortBenchOptions {
   // dataDir; with spawnWorkers, by that many local workers per round (e.g. 1, 2, 4), timed.
   std::string redis;
   std::vector<int> spawnWorkers;
-  int spawnRepeats = 1;  // rounds per count, interleaved; medians reported
+  int spawnRepeats = 1;     // rounds per count, interleaved; medians reported
+  bool pinWorkers = false;  // each spawned worker on one core of this machine (one-core machines' stand-in)
 };
 // `orthosim bench cohort`: the paper's Table 4 on the synthetic cohort, the speed-versus-error
 // plot, the soft-to-hard movement ratios. 0 when every patient is measured, 1 on bad input, 2 when
@@ -198,11 +206,15 @@ struct ServeOptions {
   bool insecure = false;   // allow a bind off the loopback without a token
   std::vector<std::string> allowedOrigins, allowedHosts;
   bool warmUp = true;  // build the phantom's coarse model at start
+  int threads = 0;     // the thread budget (0: the usable cores); previews run on this many threads
   int fineWorkers = 1;
   int maxSessions = 32;
+  int modelMemoryMiB = static_cast<int>(server::kDefaultModelMemoryMiB);  // case models kept in memory (estimate)
   int unopenedTimeoutSeconds = 300;  // a session that opens no case in this time is closed
   int previewIterations = 100;       // what one preview may spend (server::PlanningOptions)
   double previewSeconds = 15;
+  double faceFitSeconds = 60;    // what one face fit may spend (server::PlanningOptions::faceFitTime)
+  int jobsPerSession = 4;        // fine and band jobs one session may have queued or running
   int maxUploadMb = 256;         // a patient's upload from the page (net::HttpLimits::uploadBytes)
   int maxUploads = 4;            // uploads received or imported at once (net::HttpLimits::maxUploads)
   int scanExpirySeconds = 1800;  // a scan staged for import (POST /api/scans) is removed when unused this long
@@ -226,7 +238,9 @@ struct WorkerOptions {
   std::string redis;  // redis://HOST:PORT
   std::string dataDir;
   std::string casesDir, builtinDir;  // as for serve: the same cases the servers offer
-  int concurrency = 1;
+  int threads = 0;                   // the thread budget (0: the usable cores)
+  int concurrency = 0;               // jobs at once; 0: one per thread of the budget
+  int modelMemoryMiB = static_cast<int>(server::kDefaultModelMemoryMiB);  // as for serve
   double visibilitySeconds = 60;  // a job whose worker stops claiming it this long goes to another
   std::string name;               // consumer name; empty: <host>-<pid>
 };

@@ -11,6 +11,7 @@
 #include "jobs/ReplicaClaim.hpp"
 #include "net/Server.hpp"
 #include "net/TokenFile.hpp"
+#include "system/ThreadBudget.hpp"
 
 namespace orthosim::cli {
 namespace fs = std::filesystem;
@@ -45,15 +46,19 @@ net::ServerOptions serverOptions(const ServeOptions& options) {
   server.limits.maxUploads = options.maxUploads;
   server.planning.scanExpiry = std::chrono::seconds(options.scanExpirySeconds);
   server.planning.maxStagedScans = options.maxStagedScans;
+  server.planning.previewThreads = threadBudget();
   server.planning.fineWorkers = options.fineWorkers;
   server.planning.redisUrl = options.redis;
   server.planning.replica =
       options.replica.empty() ? server::defaultReplicaName(options.port) : server::checkedReplicaName(options.replica);
   server.planning.orphanGrace = std::chrono::seconds(options.orphanGraceSeconds);
   server.planning.maxSessions = options.maxSessions;
+  server.planning.modelMemoryBytes = static_cast<std::size_t>(options.modelMemoryMiB) << 20;
   server.webSocket.unopenedTimeout = std::chrono::seconds(options.unopenedTimeoutSeconds);
   server.planning.previewIterations = options.previewIterations;
   server.planning.previewTime = std::chrono::milliseconds(static_cast<long long>(options.previewSeconds * 1000));
+  server.planning.faceFitTime = std::chrono::milliseconds(static_cast<long long>(options.faceFitSeconds * 1000));
+  server.planning.maxJobsPerSession = options.jobsPerSession;
   if (options.warmUp) server.warmUpCase = "phantom-0";
   return server;
 }
@@ -86,6 +91,7 @@ fs::path dataDirOrDefault(const std::string& dataDir) {
 
 int runServe(const ServeOptions& options) {
   try {
+    setThreadBudget(options.threads);
     const net::ServerOptions server = serverOptions(options);
     net::Server running(server);
     // Tests and scripts read the port from this line (port 0 picks a free one): keep its form.
@@ -127,14 +133,28 @@ void addServeAccessOptions(CLI::App& serve, ServeOptions& o) {
 
 // How much work the server takes on at once, and for how long.
 void addServeLimitOptions(CLI::App& serve, ServeOptions& o) {
+  addThreadsOption(serve, o.threads);
   serve.add_option("--fine-workers", o.fineWorkers, "Fine jobs run at once")->check(CLI::Range(1, 16));
   serve.add_option("--max-sessions", o.maxSessions, "Planning sessions open at once")->check(CLI::Range(1, 1024));
+  serve
+      .add_option("--model-memory", o.modelMemoryMiB,
+                  "MiB of built case models kept in memory (an estimate); unused ones beyond go, least recently "
+                  "used first (default 2048)")
+      ->check(CLI::Range(0, 1 << 20));
   serve
       .add_option("--preview-iterations", o.previewIterations,
                   "Newton iterations one coarse preview may spend (beyond: refused, the last good preview kept)")
       ->check(CLI::Range(1, 10000));
   serve.add_option("--preview-seconds", o.previewSeconds, "Seconds one coarse preview may take")
       ->check(CLI::Range(0.1, 3600.0));
+  serve
+      .add_option("--face-fit-seconds", o.faceFitSeconds,
+                  "Seconds one face fit (plan_from_face) may take; it stops there with the best poses so far")
+      ->check(CLI::Range(0.001, 3600.0));
+  serve
+      .add_option("--jobs-per-session", o.jobsPerSession,
+                  "Fine and band jobs one session may have queued or running (beyond: refused until one ends)")
+      ->check(CLI::Range(1, 1024));
   serve
       .add_option("--unopened-timeout", o.unopenedTimeoutSeconds,
                   "Seconds a session may stay without opening a case before it is closed")

@@ -1,7 +1,8 @@
 // `orthosim bench sessions`: memory and open time of planning sessions on one case. Starts the
 // planning server in this process, then opens sessions on the phantom one after another, each as
 // the page does (open, a preview, its drag response, a frame), and reads the process's resident
-// memory with 1, 4 and 16 sessions open.
+// memory with 1, 4 and 16 sessions open. With --drag, sessions drag at once instead
+// (cli/SessionsDragBench).
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -32,6 +33,20 @@ double residentMiB() {
   for (std::string line; std::getline(in, line);)
     if (line.rfind("VmRSS:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
   return -1;
+}
+
+// --drag N[,N...] and the drag's settings: sessions dragging at once instead of the memory.
+void addDragOptions(CLI::App& sessions, SessionsBenchOptions& o) {
+  sessions
+      .add_option("--drag", o.dragSessions,
+                  "Instead of the memory: this many sessions drag the maxilla at once (a list runs one round each)")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 64));
+  sessions.add_option("--background-load", o.backgroundLoad, "Spinning processes beside the server while dragging")
+      ->check(CLI::Range(0, 64));
+  sessions.add_option("--drag-seconds", o.dragSeconds, "How long each session drags")->check(CLI::Range(0.1, 600.0));
+  sessions.add_option("--rate", o.poseRate, "Poses a second each dragging session sends")
+      ->check(CLI::Range(0.1, 200.0));
 }
 
 }  // namespace
@@ -86,17 +101,23 @@ void addSessionsBench(CLI::App& bench) {
   auto options = std::make_shared<SessionsBenchOptions>();
   SessionsBenchOptions& o = *options;
   o.webDir = ORTHOSIM_WEB_DIR;
-  auto* sessions = bench.add_subcommand(
-      "sessions", "Resident memory with 1, 4 and 16 planning sessions open on the phantom, and the open time");
+  auto* sessions =
+      bench.add_subcommand("sessions",
+                           "Resident memory with 1, 4 and 16 planning sessions open on the phantom, and the open time; "
+                           "with --drag, sessions dragging at once: frames/s and latencies per session");
   sessions->add_option("--counts", o.counts, "Session counts to read the memory at (increasing)")
       ->check(CLI::Range(1, 64));
   addDataOption(*sessions, o.dataDir, "Data folder (phantom and mesh cache, reused)");
   addVariantOption(*sessions, o.phantomVariant);
   addJsonOption(*sessions, o.jsonPath);
+  addDragOptions(*sessions, o);
   runWhenChosen(*sessions, [options] {
     if (!std::is_sorted(options->counts.begin(), options->counts.end()))
       throw std::invalid_argument("--counts: session counts must increase");
-    return runSessionsBench(*options);
+    if (options->dragSessions.empty()) return runSessionsBench(*options);
+    if (options->poseRate * options->dragSeconds < 2)
+      throw std::invalid_argument("--rate times --drag-seconds: a drag needs at least 2 poses");
+    return runSessionsDragBench(*options);
   });
 }
 

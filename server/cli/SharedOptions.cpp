@@ -53,4 +53,12 @@ void addJsonOption(CLI::App& command, std::string& jsonPath) {
   command.add_option("--json", jsonPath, "Also write the figures to this JSON file");
 }
 
+void addThreadsOption(CLI::App& command, int& threads) {
+  command
+      .add_option("--threads", threads,
+                  "Threads to compute with (default: the cores this process may use, from its affinity and "
+                  "cgroup quota); each solve runs on one")
+      ->check(CLI::Range(0, 1024));
+}
+
 }  // namespace orthosim::cli

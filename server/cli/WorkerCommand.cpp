@@ -13,12 +13,14 @@
 #include "jobs/RedisWorker.hpp"
 #include "session/DataFolderLeftovers.hpp"
 #include "session/DataFolderLock.hpp"
+#include "system/ThreadBudget.hpp"
 
 namespace orthosim::cli {
 namespace fs = std::filesystem;
 
 int runWorker(const WorkerOptions& options) {
   try {
+    setThreadBudget(options.threads);
     server::WorkerOptions worker;
     worker.redis = server::parseRedisUrl(options.redis);
     worker.dataDir = dataDirOrDefault(options.dataDir);
@@ -30,7 +32,8 @@ int runWorker(const WorkerOptions& options) {
       std::cerr << "orthosim worker: removed " << leftover << ", left by an interrupted write\n";
     lock.share();
     worker.cases = caseCatalog(options.builtinDir, options.casesDir, "worker");
-    worker.concurrency = options.concurrency;
+    worker.concurrency = options.concurrency > 0 ? options.concurrency : threadBudget();
+    worker.modelMemoryBytes = static_cast<std::size_t>(options.modelMemoryMiB) << 20;
     worker.visibilityTimeout = std::chrono::milliseconds(static_cast<long long>(options.visibilitySeconds * 1000));
     worker.name = options.name;
 
@@ -45,7 +48,7 @@ int runWorker(const WorkerOptions& options) {
     std::atomic<bool> stop{false};
     std::thread jobs([&] { running.run(stop); });
     // Tests and scripts wait for this line: keep its form.
-    std::cout << "worker ready: " << options.concurrency << " on " << worker.redis.text << ", data in "
+    std::cout << "worker ready: " << worker.concurrency << " on " << worker.redis.text << ", data in "
               << worker.dataDir.string() << std::endl;
     int signal = 0;
     sigwait(&signals, &signal);
@@ -73,7 +76,14 @@ void addWorkerCommand(CLI::App& parent) {
                 "~/.local/share/orthosim)");
   worker->add_option("--cases", o.casesDir, "The servers' --cases folder, if they use one");
   worker->add_option("--builtin-cases", o.builtinDir, "The servers' --builtin-cases folder");
-  worker->add_option("--concurrency", o.concurrency, "Jobs at once")->check(CLI::Range(1, 64));
+  addThreadsOption(*worker, o.threads);
+  worker->add_option("--concurrency", o.concurrency, "Jobs at once (default: one per thread of --threads)")
+      ->check(CLI::Range(0, 64));
+  worker
+      ->add_option("--model-memory", o.modelMemoryMiB,
+                   "MiB of built case models kept in memory (an estimate); unused ones beyond go, least recently "
+                   "used first (default 2048)")
+      ->check(CLI::Range(0, 1 << 20));
   worker
       ->add_option("--visibility-timeout", o.visibilitySeconds,
                    "Seconds after which a job whose worker stopped (died) goes to another worker (default 60)")

@@ -1,13 +1,46 @@
 #include "jobs/CohortWorkerJob.hpp"
 
+#include <sched.h>
+
+#include <chrono>
+#include <ctime>
+
 #include "eval/Cohort.hpp"
 #include "jobs/CohortResultFile.hpp"
 
 namespace orthosim::server {
 namespace fs = std::filesystem;
 
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Seconds since the epoch: the bench lines up the jobs of workers on one machine by it.
+double epochSeconds() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+// CPU seconds this worker process has used: against the job's wall time, how much of a core it got.
+double processCpuSeconds() {
+  timespec t{};
+  ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// The cores this worker may run on (its affinity): one when pinned.
+int usableCores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  return ::sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : 0;
+}
+
+}  // namespace
+
 nlohmann::json runCohortOnWorker(const JobMessage& job, const fs::path& dataDir, const std::string& consumer) {
   if (!job.cohort) throw std::invalid_argument("job " + job.job + " is not a cohort job");
+  const double startedAt = epochSeconds(), cpuAtStart = processCpuSeconds();
+  const auto t0 = Clock::now();
   const CohortPatient* patient = nullptr;
   for (const CohortPatient& p : cohortPatients())
     if (p.id == job.caseId) patient = &p;
@@ -31,6 +64,7 @@ nlohmann::json runCohortOnWorker(const JobMessage& job, const fs::path& dataDir,
   CaseSpec spec = loadCaseFile(casePath.string());
   if (!job.cohort->contact) spec.contacts.clear();
   const std::string cache = (dataDir / "cache").string();
+  const double caseSeconds = since(t0);
   CohortOutcome outcome;
   try {
     outcome.run = solveCohortRun(spec, job.cohort->config, job.cohort->repeats, cache);
@@ -42,12 +76,20 @@ nlohmann::json runCohortOnWorker(const JobMessage& job, const fs::path& dataDir,
     outcome.run = solveCohortRun(spec, config, job.cohort->repeats, cache);
   }
   const std::string file = cohortResultFileName(job.job);
+  const auto written = Clock::now();
   writeCohortResult(dataDir / file, outcome);
   return {{"type", "job_done"},
           {"kind", "cohort"},
           {"result", file},
           {"solve_s", outcome.run.solveSeconds},
-          {"build_s", outcome.run.buildSeconds}};
+          {"build_s", outcome.run.buildSeconds},
+          {"case_s", caseSeconds},
+          {"write_s", since(written)},
+          {"busy_s", since(t0)},
+          {"cpu_s", processCpuSeconds() - cpuAtStart},
+          {"started_at_s", startedAt},
+          {"consumer", consumer},
+          {"worker_cores", usableCores()}};
 }
 
 }  // namespace orthosim::server

@@ -84,6 +84,8 @@ class FineJobs {
   }
   virtual int running() const = 0;
   virtual int queued() const = 0;
+  // The owner's jobs queued or running, of every kind on this queue (a session's quota counts them).
+  virtual int ownedBy(const std::string& owner) const = 0;
   // Cancels every job and stops (the destructor does this too).
   virtual void shutdown() = 0;
 };
@@ -97,6 +99,7 @@ class InProcessFineJobs : public FineJobs {
   void cancelOwner(const std::string& owner) override { queue_.cancelOwner(owner); }
   int running() const override { return queue_.running(); }
   int queued() const override { return queue_.queued(); }
+  int ownedBy(const std::string& owner) const override { return queue_.ownedBy(owner); }
   void shutdown() override { queue_.shutdown(); }
 
  private:

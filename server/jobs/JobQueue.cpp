@@ -85,6 +85,13 @@ int JobQueue::queued() const {
   return static_cast<int>(queue_.size());
 }
 
+int JobQueue::ownedBy(const std::string& owner) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const auto owned = [&](const Job& j) { return j.owner == owner; };
+  return static_cast<int>(std::count_if(queue_.begin(), queue_.end(), owned) +
+                          std::count_if(active_.begin(), active_.end(), [&](const Job* j) { return owned(*j); }));
+}
+
 void JobQueue::shutdown() {
   std::vector<std::pair<long long, Dropped>> dropped;
   {

@@ -39,6 +39,8 @@ class JobQueue {
   std::optional<int> position(long long id) const;
   int running() const;
   int queued() const;
+  // The owner's jobs queued or running (a session's quota counts them).
+  int ownedBy(const std::string& owner) const;
   // Cancels every job and stops the workers (the destructor does this too).
   void shutdown();
 

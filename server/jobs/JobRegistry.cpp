@@ -238,6 +238,13 @@ int JobRegistry::running() const {
   return n;
 }
 
+int JobRegistry::ownedBy(const std::string& owner) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  int n = 0;
+  for (const auto& [id, j] : jobs_) n += j.owner == owner && !j.outcome ? 1 : 0;
+  return n;
+}
+
 int JobRegistry::queued() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   int n = 0;

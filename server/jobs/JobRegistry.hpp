@@ -64,6 +64,8 @@ class JobRegistry {
 
   int running() const;
   int queued() const;
+  // The owner's jobs queued or running (not those whose outcome waits for a session to resume).
+  int ownedBy(const std::string& owner) const;
 
  private:
   std::vector<OutstandingJob> takeExpired();

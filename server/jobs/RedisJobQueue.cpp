@@ -49,6 +49,8 @@ int RedisFineJobs::running() const { return registry_.running(); }
 
 int RedisFineJobs::queued() const { return registry_.queued(); }
 
+int RedisFineJobs::ownedBy(const std::string& owner) const { return registry_.ownedBy(owner); }
+
 void RedisFineJobs::shutdown() {
   if (stopping_.exchange(true)) return;
   if (relay_) relay_->stop();

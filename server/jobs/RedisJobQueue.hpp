@@ -58,6 +58,7 @@ class RedisFineJobs : public FineJobs {
               const std::function<void(const std::vector<ResumedJob>&)>& announce) override;
   int running() const override;
   int queued() const override;
+  int ownedBy(const std::string& owner) const override;
   void shutdown() override;
 
   const std::string& serverId() const { return serverId_; }

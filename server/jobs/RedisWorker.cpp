@@ -39,7 +39,7 @@ void sendReply(RedisConnection& redis, const std::string& stream, const json& me
 }  // namespace
 
 RedisWorker::RedisWorker(WorkerOptions options)
-    : options_(std::move(options)), cases_(options_.cases, options_.dataDir) {
+    : options_(std::move(options)), cases_(options_.cases, options_.dataDir, options_.modelMemoryBytes) {
   if (options_.name.empty()) options_.name = defaultName();
   std::vector<std::string> skipped;
   for (const CaseEntry& c : PatientImporter::imported(options_.dataDir, &skipped)) try {

@@ -33,6 +33,7 @@ struct WorkerOptions {
   std::filesystem::path dataDir;  // the data folder the servers use (cases, mesh cache, results)
   std::vector<CaseEntry> cases;   // built-in and folder cases; imported patients are read from dataDir
   int concurrency = 1;            // jobs at once (threads)
+  std::size_t modelMemoryBytes = kDefaultModelMemoryMiB << 20;  // built case models kept (CaseLibrary)
   std::chrono::milliseconds visibilityTimeout{60000};
   std::string name;  // consumer names are <name>-<thread>; default <host>-<pid>
 };

@@ -1,18 +1,27 @@
 #pragma once
-// One session's background work, run one task at a time on a shared thread pool (the session's
-// Model is not shared between threads). Three kinds of task:
-// - Ordered (opening a case, an export): always runs, in order.
-// - Newest (a preview): a newer one cancels the running Newest or FollowUp task and replaces the
-//   queued ones, so the newest pose wins and no backlog builds up.
-// - FollowUp (the drag response of a finished preview): runs after what is queued unless a Newest
-//   task is already waiting, which it yields to; it never cancels or drops anything, since the
-//   task it follows up may have been overtaken by a newer pose while it ran.
+// One session's background work, run one task at a time on shared threads (the session's Model
+// is not shared between threads): on a RoundRobinExecutor, where it takes its turn with the other
+// sessions, or on a plain thread pool. A task is taken when a thread is free for it, so a newer
+// task that replaced a queued one runs in that one's turn. Three kinds of task:
+// - Ordered (opening a case, an export): always runs, in order; only close cancels it.
+// - Newest (a preview, a frame): a newer one cancels the running Newest and replaces the queued
+//   one, so the newest pose wins and no backlog builds up.
+// - FollowUp (the drag response of a finished preview): yields to at most one Newest, the one
+//   waiting when it is queued or else the first to come (newer ones take that one's place while it
+//   waits); the Newest tasks that come once that one started run after it, and once started no
+//   Newest cancels it. So while poses keep coming the response of a converged state is still built,
+//   and a newer pose waits at most one response build. A newer FollowUp replaces a queued one (its
+//   state is the newer); none is dropped for a Newest, since the task it follows up may have been
+//   overtaken by a newer pose while it ran.
+// Urgent, on the executor: a Newest task next.
 #include <atomic>
 #include <boost/asio/thread_pool.hpp>
 #include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
+
+#include "schedule/RoundRobinExecutor.hpp"
 
 namespace orthosim::server {
 
@@ -21,6 +30,7 @@ class SerialWork {
   using Body = std::function<void(const std::atomic<bool>& cancel)>;
   enum class Kind { Ordered, Newest, FollowUp };
 
+  explicit SerialWork(RoundRobinExecutor& executor);
   explicit SerialWork(boost::asio::thread_pool& pool);
 
   void submit(Body body, Kind kind);
@@ -31,10 +41,14 @@ class SerialWork {
  private:
   struct Task {
     Body body;
-    Kind kind;
+    Kind kind = Kind::Ordered;
+    bool yielded = false;  // a FollowUp a Newest went ahead of
   };
   struct State;
-  static void startNext(const std::shared_ptr<State>& state);  // with state->mutex held
+  static void queueNewest(State& state, Task task);
+  static void queueFollowUp(State& state, Task task);
+  static void takeTurn(const std::shared_ptr<State>& state);  // asks a thread for the next task
+  static void runNext(const std::shared_ptr<State>& state);   // on that thread
 
   std::shared_ptr<State> state_;
 };

@@ -4,15 +4,27 @@
 
 namespace orthosim::server {
 
-ThreadPools::ThreadPools(int previewThreads) : preview_(static_cast<std::size_t>(std::max(1, previewThreads))) {}
+namespace {
+std::size_t atLeastOne(int threads) { return static_cast<std::size_t>(std::max(1, threads)); }
+}  // namespace
+
+ThreadPools::ThreadPools(int previewThreads, BackgroundThreads background)
+    : preview_(previewThreads),
+      openings_(atLeastOne(background.openings)),
+      faceFits_(atLeastOne(background.faceFits)),
+      exports_(atLeastOne(background.exports)),
+      requests_(atLeastOne(background.requests)) {}
 
 ThreadPools::~ThreadPools() = default;
 
 void ThreadPools::stopPreviewsAndFrames() {
   preview_.stop();
-  preview_.join();
   render_.stop();
-  render_.join();
+}
+
+void ThreadPools::stopBackground() {
+  for (boost::asio::thread_pool* pool : {&openings_, &faceFits_, &exports_, &requests_}) pool->stop();
+  for (boost::asio::thread_pool* pool : {&openings_, &faceFits_, &exports_, &requests_}) pool->join();
 }
 
 }  // namespace orthosim::server

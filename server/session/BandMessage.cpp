@@ -40,10 +40,17 @@ void JobHandler::band(MessageReader& r, const json& id) {
   } catch (const std::invalid_argument& e) {
     throw ProtocolError("bad_value", std::string("/range_scale: ") + e.what(), "/range_scale");
   }
-  if (services_.onWorkers) {  // as the fine jobs
-    submitRedisBand(s, resolution, options, solves, id);
-    return;
-  }
+  requests_.submit(id, [this, s, resolution, options, solves, id] {
+    checkQuota();
+    if (services_.onWorkers)  // as the fine jobs
+      submitRedisBand(s, resolution, options, solves, id);
+    else
+      submitLocalBand(s, resolution, options, solves, id);
+  });
+}
+
+void JobHandler::submitLocalBand(const PlanSnapshot& s, Resolution resolution, const BandOptions& options,
+                                 size_t solves, const json& id) {
   const std::optional<long long> job = services_.localJobs.submit(
       owner_,
       [this, keep = channel_.keepAlive(), s, resolution, options](long long job, const std::atomic<bool>& cancel) {
@@ -57,7 +64,7 @@ void JobHandler::band(MessageReader& r, const json& id) {
                   {"job", *job},
                   {"kind", "band"},
                   {"case", s.caseId},
-                  {"resolution", resolutionName},
+                  {"resolution", resolutionName(resolution)},
                   {"solves", solves},
                   {"position", services_.localJobs.position(*job).value_or(0)}},
                  id);
@@ -204,19 +211,17 @@ void JobHandler::exportBand(MessageReader& r, const json& id) {
   }
   if (!done)
     throw ProtocolError("no_band", "there is no prediction band of case '" + caseId + "' yet: send 'band' first");
-  work_.submit(
-      [this, keep = channel_.keepAlive(), done, surface, format, id](const std::atomic<bool>&) {
-        try {
-          const SurfaceMesh& mesh = surface == "low"    ? done->envelope.lowSurface()
-                                    : surface == "high" ? done->envelope.highSurface()
-                                                        : done->envelope.nominal;
-          exports_.offer(surfaceExportFile(mesh, done->caseId + "-band-" + surface + "-" + done->resolution, format),
-                         {{"format", format}, {"result", "band_" + surface}, {"job", done->job}}, id);
-        } catch (const std::exception& e) {
-          channel_.sendError("export_failed", std::string("export failed: ") + e.what(), "", id);
-        }
-      },
-      SerialWork::Kind::Ordered);
+  exports_.schedule([this, done, surface, format, id] {
+    try {
+      const SurfaceMesh& mesh = surface == "low"    ? done->envelope.lowSurface()
+                                : surface == "high" ? done->envelope.highSurface()
+                                                    : done->envelope.nominal;
+      exports_.offer(surfaceExportFile(mesh, done->caseId + "-band-" + surface + "-" + done->resolution, format),
+                     {{"format", format}, {"result", "band_" + surface}, {"job", done->job}}, id);
+    } catch (const std::exception& e) {
+      channel_.sendError("export_failed", std::string("export failed: ") + e.what(), "", id);
+    }
+  });
 }
 
 }  // namespace orthosim::server

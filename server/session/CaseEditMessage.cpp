@@ -63,18 +63,17 @@ void CaseHandler::editCase(MessageReader& r, const json& id) {
   if (edit.landmarks.empty() && !edit.cuts)
     throw ProtocolError("missing_field", "edit_case needs landmarks or cuts to change", "/landmarks");
   const std::filesystem::path caseFile = entry->caseFile;
-  work_.submit(
-      [this, keep = channel_.keepAlive(), caseId, caseFile, edit, id](const std::atomic<bool>&) {
-        try {
-          applyCaseEdit(caseFile, edit);
-        } catch (const std::exception& e) {
-          return channel_.sendError("edit_failed", "case '" + caseId + "' is unchanged: " + e.what(), "", id);
-        }
-        cases_.invalidate(caseId);
-        channel_.reply({{"type", "case_edited"}, {"case", caseId}}, id);
-        startOpening(caseId, id);
-      },
-      SerialWork::Kind::Ordered);
+  // On the opening pool, as the rebuild that follows: the file written, then the case opened again.
+  openings_.submit([this, keep = channel_.keepAlive(), caseId, caseFile, edit, id](const std::atomic<bool>&) {
+    try {
+      applyCaseEdit(caseFile, edit);
+    } catch (const std::exception& e) {
+      return channel_.sendError("edit_failed", "case '" + caseId + "' is unchanged: " + e.what(), "", id);
+    }
+    cases_.invalidate(caseId);
+    channel_.reply({{"type", "case_edited"}, {"case", caseId}}, id);
+    startOpening(caseId, id);
+  });
 }
 
 }  // namespace orthosim::server

@@ -46,15 +46,24 @@ json landmarkFrameJson(const CaseModel& m) {
 
 }  // namespace
 
-CaseHandler::CaseHandler(SessionState& state, const SessionChannel& channel, SerialWork& work, FrameHandler& frames,
-                         PreviewScheduler& previews, CaseLibrary& cases)
-    : state_(state), channel_(channel), work_(work), frames_(frames), previews_(previews), cases_(cases) {}
+CaseHandler::CaseHandler(SessionState& state, const SessionChannel& channel, SerialWork& work, SessionStrand& openings,
+                         RequestWork& requests, FrameHandler& frames, PreviewScheduler& previews, CaseLibrary& cases)
+    : state_(state),
+      channel_(channel),
+      work_(work),
+      openings_(openings),
+      requests_(requests),
+      frames_(frames),
+      previews_(previews),
+      cases_(cases) {}
 
 void CaseHandler::listCases(MessageReader& r, const json& id) {
   r.rejectUnknown();
-  json cases = casesJson(cases_.catalog());
-  cases["type"] = "cases";
-  channel_.reply(std::move(cases), id);
+  requests_.submit(id, [this, id] {  // the catalog looks for patients imported meanwhile: a folder scan
+    json cases = casesJson(cases_.catalog());
+    cases["type"] = "cases";
+    channel_.reply(std::move(cases), id);
+  });
 }
 
 void CaseHandler::open(MessageReader& r, const json& id) {
@@ -83,22 +92,27 @@ void CaseHandler::startOpening(const std::string& caseId, const json& id) {
     state_.opening = caseId;
   }
   channel_.reply({{"type", "opening"}, {"case", caseId}}, id);
-  work_.submit(
-      [this, keep = channel_.keepAlive(), caseId, id](const std::atomic<bool>& cancel) {
-        const auto t0 = std::chrono::steady_clock::now();
-        std::shared_ptr<OpenCase> c;
-        try {
-          c = build(caseId, id, cancel);
-        } catch (const std::exception& e) {
-          {
-            const std::lock_guard<std::mutex> lock(state_.mutex);
-            if (state_.opening == caseId) state_.opening.clear();
-          }
-          return channel_.sendError("open_failed", "case '" + caseId + "' cannot be opened: " + e.what(), "/case", id);
-        }
-        if (c) opened(c, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), id);
-      },
-      SerialWork::Kind::Ordered);
+  // The models are built below the previews; the session takes them on its serial work, after the
+  // work it had before (a preview of the former case still running).
+  openings_.submit([this, keep = channel_.keepAlive(), caseId, id](const std::atomic<bool>& cancel) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::shared_ptr<OpenCase> c;
+    try {
+      c = build(caseId, id, cancel);
+    } catch (const std::exception& e) {
+      {
+        const std::lock_guard<std::mutex> lock(state_.mutex);
+        if (state_.opening == caseId) state_.opening.clear();
+      }
+      return channel_.sendError("open_failed", "case '" + caseId + "' cannot be opened: " + e.what(), "/case", id);
+    }
+    if (!c) return;
+    work_.submit(
+        [this, keep = channel_.keepAlive(), c, t0, id](const std::atomic<bool>&) {
+          opened(c, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), id);
+        },
+        SerialWork::Kind::Ordered);
+  });
 }
 
 std::shared_ptr<OpenCase> CaseHandler::build(const std::string& caseId, const json& id,
@@ -118,12 +132,16 @@ std::shared_ptr<OpenCase> CaseHandler::build(const std::string& caseId, const js
   c->probe = SkinFigureProbe(*c->coarse);
   c->lips = lipVertices(*c->coarse);
   c->faceLandmarks = skinLandmarkNames(*c->coarse);
-  c->model = std::make_unique<Model>(*cases_.coarsePrototype(caseId), Model::ShareImmutable{});
+  c->prototype = cases_.coarsePrototype(caseId);
+  c->model = std::make_unique<Model>(*c->prototype, Model::ShareImmutable{});
   c->lastGood = c->model->restState();
   return c;
 }
 
 void CaseHandler::opened(const std::shared_ptr<OpenCase>& c, double seconds, const json& id) {
+  // The drag view of the rest pose (preview 0), queued before any pose can ask for a preview, so
+  // the first drag is drawn at once.
+  previews_.scheduleRestResponse(c);
   json opened;
   {
     const std::lock_guard<std::mutex> lock(state_.mutex);
@@ -137,8 +155,6 @@ void CaseHandler::opened(const std::shared_ptr<OpenCase>& c, double seconds, con
   opened["seconds"] = seconds;
   channel_.reply(std::move(opened), id);
   frames_.requestFrame();
-  // The drag view of the rest pose, so the first drag is drawn at once; preview 0 is rest.
-  previews_.scheduleDragResponse(c, 0, c->lastGood);
 }
 
 json CaseHandler::caseJson(const OpenCase& c) const {

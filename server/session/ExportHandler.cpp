@@ -5,8 +5,8 @@
 namespace orthosim::server {
 using nlohmann::json;
 
-ExportHandler::ExportHandler(SessionState& state, const SessionChannel& channel, SerialWork& work, ExportStore& exports,
-                             const std::string& owner)
+ExportHandler::ExportHandler(SessionState& state, const SessionChannel& channel, SessionStrand& work,
+                             ExportStore& exports, const std::string& owner)
     : state_(state), channel_(channel), work_(work), exports_(exports), owner_(owner) {}
 
 void ExportHandler::exportSkin(MessageReader& r, const json& id) {
@@ -37,15 +37,17 @@ void ExportHandler::exportSkin(MessageReader& r, const json& id) {
                         "/result");
   if (model->tissue.skin.numVertices() == 0)
     throw ProtocolError("no_skin", "case '" + c->id + "' has no skin surface to export");
-  work_.submit(
-      [this, keep = channel_.keepAlive(), model, x, format, which, caseId = c->id, id](const std::atomic<bool>&) {
-        try {
-          offer(skinExportFile(*model, *x, caseId, which, format), {{"format", format}, {"result", which}}, id);
-        } catch (const std::exception& e) {
-          channel_.sendError("export_failed", std::string("export failed: ") + e.what(), "", id);
-        }
-      },
-      SerialWork::Kind::Ordered);
+  schedule([this, model, x, format, which, caseId = c->id, id] {
+    try {
+      offer(skinExportFile(*model, *x, caseId, which, format), {{"format", format}, {"result", which}}, id);
+    } catch (const std::exception& e) {
+      channel_.sendError("export_failed", std::string("export failed: ") + e.what(), "", id);
+    }
+  });
+}
+
+void ExportHandler::schedule(std::function<void()> body) {
+  work_.submit([keep = channel_.keepAlive(), body = std::move(body)](const std::atomic<bool>&) { body(); });
 }
 
 void ExportHandler::offer(SkinExport file, json message, const json& id) {

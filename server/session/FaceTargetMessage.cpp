@@ -1,8 +1,11 @@
 // `plan_from_face` (docs/protocol.md, "Planning from the face"): soft-tissue landmark targets in,
 // the fragment poses that reach them out (engine/planning/PlanFromFace). The fit runs on the
-// session's serial work like a preview (a newer pose or preview supersedes it); each iteration is
-// reported and drawn, and the poses found become the session's poses, followed by their preview.
+// face-fit pool on a model of its own, so that neither the session's previews nor other sessions'
+// wait for it; a newer pose or preview supersedes it, and it stops at its time budget with the best
+// poses so far. Each iteration is reported and drawn, and the poses found become the session's
+// poses on its serial work, followed by their preview.
 #include <algorithm>
+#include <sstream>
 
 #include "planning/FaceRequestJson.hpp"
 #include "session/FaceHandler.hpp"
@@ -11,9 +14,37 @@
 namespace orthosim::server {
 using nlohmann::json;
 
-FaceHandler::FaceHandler(SessionState& state, const SessionChannel& channel, SerialWork& work, FrameHandler& frames,
-                         PreviewScheduler& previews, const PoseLimits& limits)
-    : state_(state), channel_(channel), work_(work), frames_(frames), previews_(previews), limits_(limits) {}
+namespace {
+
+std::string budgetMessage(std::chrono::milliseconds budget) {
+  return "planning from the face stopped at its time budget of " +
+         (std::ostringstream() << budget.count() / 1000.0).str() + " s (serve --face-fit-seconds)";
+}
+
+double largestMiss(const FaceFitResult& r) {
+  double worst = 0;
+  for (const TargetResidual& t : r.residuals) worst = std::max(worst, t.distance());
+  return worst;
+}
+
+}  // namespace
+
+FaceHandler::FaceHandler(SessionState& state, const SessionChannel& channel, SerialWork& work, SessionStrand& fits,
+                         FrameHandler& frames, PreviewScheduler& previews, const PoseLimits& limits,
+                         std::chrono::milliseconds budget)
+    : state_(state),
+      channel_(channel),
+      work_(work),
+      fits_(fits),
+      frames_(frames),
+      previews_(previews),
+      limits_(limits),
+      budget_(budget) {}
+
+void FaceHandler::supersede() {
+  const std::lock_guard<std::mutex> lock(cancelMutex_);
+  if (cancel_) cancel_->store(true);
+}
 
 void FaceHandler::planFromFace(MessageReader& r, const json& id) {
   const std::shared_ptr<OpenCase> c = state_.requireOpen();
@@ -38,9 +69,15 @@ void FaceHandler::planFromFace(MessageReader& r, const json& id) {
     start = state_.poses;
   }
   channel_.reply({{"type", "face_fitting"}, {"case", c->id}, {"targets", face.targets.size()}}, id);
-  work_.submit([this, keep = channel_.keepAlive(), c, face, start,
-                id](const std::atomic<bool>& cancel) { runFaceFit(c, face, start, id, cancel); },
-               SerialWork::Kind::Newest);
+  auto cancel = std::make_shared<std::atomic<bool>>(false);
+  {
+    const std::lock_guard<std::mutex> lock(cancelMutex_);
+    if (cancel_) cancel_->store(true);
+    cancel_ = cancel;
+  }
+  fits_.submit([this, keep = channel_.keepAlive(), c, face, start, id, cancel](const std::atomic<bool>&) {
+    runFaceFit(c, face, start, id, cancel);
+  });
 }
 
 // Names the client can be told about at once, before the fit is queued.
@@ -61,13 +98,14 @@ void FaceHandler::checkFaceRequest(const FaceRequest& face, const OpenCase& c) c
 }
 
 void FaceHandler::runFaceFit(const std::shared_ptr<OpenCase>& c, const FaceRequest& face, const Poses& start,
-                             const json& id, const std::atomic<bool>& cancel) {
+                             const json& id, const std::shared_ptr<std::atomic<bool>>& cancel) {
   FaceFitOptions options;
   options.locks = face.locks;
   options.translationLimitMm = limits_.translationMm;
   options.rotationLimitDeg = limits_.rotationDeg;
   SolveControl control;
-  control.cancel = &cancel;
+  control.cancel = cancel.get();
+  control.deadline = std::chrono::steady_clock::now() + budget_;
   const std::shared_ptr<SessionView> view = state_.viewOf(c);
   const auto onIteration = [&](const FaceFitProgress& p) {
     json poses = json::object();
@@ -82,23 +120,38 @@ void FaceHandler::runFaceFit(const std::shared_ptr<OpenCase>& c, const FaceReque
       frames_.requestFrame();
     }
   };
-  FaceFitResult result;
+  auto result = std::make_shared<FaceFitResult>();
   try {
-    result =
-        orthosim::planFromFace(*c->model, *c->coarse, c->fragments, face.targets, start, options, control, onIteration);
+    Model model(*c->prototype, Model::ShareImmutable{});  // the session's previews solve with its own
+    *result =
+        orthosim::planFromFace(model, *c->coarse, c->fragments, face.targets, start, options, control, onIteration);
   } catch (const std::invalid_argument& e) {
     return channel_.sendError("bad_value", e.what(), "", id);
   } catch (const std::exception& e) {
+    const std::string why = control.pastDeadline() && !control.cancelled()
+                                ? budgetMessage(budget_) + " before the start poses were solved"
+                                : std::string("planning from the face failed: ") + e.what();
     return channel_.reply(
-        {{"type", "face_plan_failed"},
-         {"case", c->id},
-         {"message", std::string("planning from the face failed: ") + e.what() + "; the poses are unchanged"}},
-        id);
+        {{"type", "face_plan_failed"}, {"case", c->id}, {"message", why + "; the poses are unchanged"}}, id);
   }
-  json out = faceFitJson(result);
+  json out = faceFitJson(*result);
   out["type"] = "face_plan";
   out["case"] = c->id;
-  if (result.cancelled) {  // a newer pose or preview came: it decides the poses
+  if (!result->cancelled && !result->reached && control.pastDeadline()) {
+    out["past_deadline"] = true;
+    out["message"] = budgetMessage(budget_) + " after " + std::to_string(result->iterations) +
+                     " iterations: the best poses so far are taken, " +
+                     (std::ostringstream() << largestMiss(*result)).str() + " mm from the farthest target";
+  }
+  work_.submit([this, keep = channel_.keepAlive(), c, result, out, id,
+                cancel](const std::atomic<bool>&) { takeFaceFit(c, std::move(*result), out, id, cancel); },
+               SerialWork::Kind::Ordered);
+}
+
+void FaceHandler::takeFaceFit(const std::shared_ptr<OpenCase>& c, FaceFitResult result, json out, const json& id,
+                              const std::shared_ptr<std::atomic<bool>>& cancel) {
+  if (result.cancelled || *cancel) {  // a newer pose or preview came: it decides the poses
+    out["cancelled"] = true;
     out["message"] = "superseded by a newer pose or preview; the poses are unchanged";
     return channel_.reply(std::move(out), id);
   }

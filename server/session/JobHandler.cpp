@@ -8,11 +8,12 @@
 namespace orthosim::server {
 using nlohmann::json;
 
-JobHandler::JobHandler(SessionState& state, const SessionChannel& channel, SerialWork& work, FrameHandler& frames,
-                       ExportHandler& exports, JobServices services, const std::string& owner)
+JobHandler::JobHandler(SessionState& state, const SessionChannel& channel, SerialWork& work, RequestWork& requests,
+                       FrameHandler& frames, ExportHandler& exports, JobServices services, const std::string& owner)
     : state_(state),
       channel_(channel),
       work_(work),
+      requests_(requests),
       frames_(frames),
       exports_(exports),
       services_(services),
@@ -33,6 +34,26 @@ void JobHandler::confirm(MessageReader& r, const json& id) {
   request.caseId = c->id;
   request.plan = c->plan(poses);  // same case file as the coarse model: same frame and pivots
   request.context = std::move(context);
+  requests_.submit(id, [this, c, poses, request = std::move(request), id]() mutable {
+    submitFine(c, poses, std::move(request), id);
+  });
+}
+
+void JobHandler::checkQuota() const {
+  const int quota = services_.options.maxJobsPerSession;
+  const int owned = services_.onWorkers ? services_.fineJobs.ownedBy(owner_) : services_.localJobs.ownedBy(owner_);
+  if (owned >= quota)
+    throw ProtocolError("job_quota", "this session has " + std::to_string(owned) +
+                                         " fine and band jobs queued or running, its quota of " +
+                                         std::to_string(quota) +
+                                         " (serve --jobs-per-session); cancel one of them or wait until one has "
+                                         "finished, then send it again");
+}
+
+// With the request's case hashed and the job on Redis (`serve --redis`): not on a network thread.
+void JobHandler::submitFine(const std::shared_ptr<OpenCase>& c, const Poses& poses, FineJobRequest request,
+                            const json& id) {
+  checkQuota();
   std::optional<SubmittedJob> job;
   try {
     job = services_.fineJobs.submit(std::move(request), fineCallbacks(c, poses));
@@ -79,10 +100,12 @@ void JobHandler::cancel(MessageReader& r, const json& id) {
   const std::optional<long long> job = r.optionalInteger("job", 1, std::numeric_limits<long long>::max());
   r.rejectUnknown();
   if (!job) throw ProtocolError("missing_field", "/job: required field is missing", "/job");
-  if (!services_.fineJobs.cancel(owner_, *job) && !services_.localJobs.cancel(owner_, *job))
-    throw ProtocolError("unknown_job", "/job: no queued or running job " + std::to_string(*job) + " of this session",
-                        "/job");
-  channel_.reply({{"type", "cancelling"}, {"job", *job}}, id);
+  requests_.submit(id, [this, job = *job, id] {  // after the session's submissions; on Redis a round trip
+    if (!services_.fineJobs.cancel(owner_, job) && !services_.localJobs.cancel(owner_, job))
+      throw ProtocolError("unknown_job", "/job: no queued or running job " + std::to_string(job) + " of this session",
+                          "/job");
+    channel_.reply({{"type", "cancelling"}, {"job", job}}, id);
+  });
 }
 
 }  // namespace orthosim::server

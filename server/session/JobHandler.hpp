@@ -3,7 +3,9 @@
 // job of the poses, `cancel` ends one, `resume` takes over those a former session of this client
 // left (session/ResumeMessage.cpp); `band` queues a band job, `band_view` shows its envelopes and
 // `export_band` writes them (session/BandMessage.cpp). Jobs run on this machine's pool, or with
-// `serve --redis` on the workers; their outcomes reach the session from any thread.
+// `serve --redis` on the workers; their outcomes reach the session from any thread. Submitting
+// and cancelling wait on Redis (and hash the case's files): they run on the session's requests,
+// off the network threads. A session has at most `maxJobsPerSession` jobs queued or running.
 #include <atomic>
 #include <map>
 #include <memory>
@@ -20,6 +22,7 @@
 #include "session/FrameHandler.hpp"
 #include "session/MessageReader.hpp"
 #include "session/PlanningService.hpp"
+#include "session/RequestWork.hpp"
 #include "session/SessionChannel.hpp"
 #include "session/SessionState.hpp"
 
@@ -37,8 +40,8 @@ struct JobServices {
 class JobHandler {
  public:
   // `owner`: the session's id, whose jobs these are.
-  JobHandler(SessionState& state, const SessionChannel& channel, SerialWork& work, FrameHandler& frames,
-             ExportHandler& exports, JobServices services, const std::string& owner);
+  JobHandler(SessionState& state, const SessionChannel& channel, SerialWork& work, RequestWork& requests,
+             FrameHandler& frames, ExportHandler& exports, JobServices services, const std::string& owner);
 
   void confirm(MessageReader& r, const nlohmann::json& id);
   void cancel(MessageReader& r, const nlohmann::json& id);
@@ -49,6 +52,13 @@ class JobHandler {
 
  private:
   // Publishes a fine job's outcome of `poses` on case `c` to this session.
+  // Throws job_quota when the session has its quota of jobs queued or running; on its requests, so
+  // that no other job of the session is submitted between the count and the submission.
+  void checkQuota() const;
+  void submitFine(const std::shared_ptr<OpenCase>& c, const Poses& poses, FineJobRequest request,
+                  const nlohmann::json& id);
+  void submitLocalBand(const PlanSnapshot& s, Resolution resolution, const BandOptions& options, size_t solves,
+                       const nlohmann::json& id);
   FineJobCallbacks fineCallbacks(const std::shared_ptr<OpenCase>& c, const Poses& poses);
   void publishFine(long long job, const std::shared_ptr<OpenCase>& c, const Poses& poses, FineSolve solved);
   // A band job on the workers (`serve --redis`), one on this machine's pool, and a finished band
@@ -63,6 +73,7 @@ class JobHandler {
   SessionState& state_;
   const SessionChannel& channel_;
   SerialWork& work_;
+  RequestWork& requests_;
   FrameHandler& frames_;
   ExportHandler& exports_;
   JobServices services_;

@@ -28,6 +28,7 @@ struct OpenCase {
   ReturnFreedMemory trimLast;  // first member: destroyed after the others
   std::string id;
   std::shared_ptr<const CaseModel> coarse;
+  std::shared_ptr<const Model> prototype;   // held so the library shares it, never evicts it, while open
   std::vector<PlanningFragment> fragments;  // the movable ones, in scene order
   SkinFigureProbe probe;
   // Only the session's serial work solves with it and touches lastGood; set_poses reads its shared

@@ -8,21 +8,23 @@
 namespace orthosim::server {
 using nlohmann::json;
 
-PlanHandler::PlanHandler(SessionState& state, const SessionChannel& channel, PreviewScheduler& previews,
-                         PlanStore& plans, const PoseLimits& limits)
-    : state_(state), channel_(channel), previews_(previews), plans_(plans), limits_(limits) {}
+PlanHandler::PlanHandler(SessionState& state, const SessionChannel& channel, RequestWork& requests,
+                         PreviewScheduler& previews, PlanStore& plans, const PoseLimits& limits)
+    : state_(state), channel_(channel), requests_(requests), previews_(previews), plans_(plans), limits_(limits) {}
 
 void PlanHandler::listPlans(MessageReader& r, const json& id) {
   const std::shared_ptr<OpenCase> c = state_.requireOpen();
   r.rejectUnknown();
-  // `plans` stays the list of names older pages read; `details` says who saved each and when.
-  json names = json::array(), details = json::array();
-  for (const PlanEntry& e : plans_.entries(c->id)) {
-    names.push_back(e.name);
-    details.push_back({{"name", e.name}, {"saved_by", e.stamp.savedBy}, {"saved_at", e.stamp.savedAt}});
-  }
-  channel_.reply({{"type", "plans"}, {"case", c->id}, {"plans", std::move(names)}, {"details", std::move(details)}},
-                 id);
+  requests_.submit(id, [this, caseId = c->id, id] {
+    // `plans` stays the list of names older pages read; `details` says who saved each and when.
+    json names = json::array(), details = json::array();
+    for (const PlanEntry& e : plans_.entries(caseId)) {
+      names.push_back(e.name);
+      details.push_back({{"name", e.name}, {"saved_by", e.stamp.savedBy}, {"saved_at", e.stamp.savedAt}});
+    }
+    channel_.reply({{"type", "plans"}, {"case", caseId}, {"plans", std::move(names)}, {"details", std::move(details)}},
+                   id);
+  });
 }
 
 void PlanHandler::savePlan(MessageReader& r, const json& id) {
@@ -39,12 +41,13 @@ void PlanHandler::savePlan(MessageReader& r, const json& id) {
     current = state_.poses;
   }
   const PlanStamp stamp = planStampNow(savedBy);
-  plans_.save(c->id, name,
-              savedPlanJson(c->id, name, poses, c->plan(current), osteotomySetJson(c->coarse->spec.cuts), stamp),
-              replace);
-  channel_.reply(
-      {{"type", "saved"}, {"case", c->id}, {"name", name}, {"saved_by", stamp.savedBy}, {"saved_at", stamp.savedAt}},
-      id);
+  json plan = savedPlanJson(c->id, name, poses, c->plan(current), osteotomySetJson(c->coarse->spec.cuts), stamp);
+  requests_.submit(id, [this, caseId = c->id, name, plan = std::move(plan), replace, stamp, id] {
+    plans_.save(caseId, name, plan, replace);  // written and synced
+    channel_.reply(
+        {{"type", "saved"}, {"case", caseId}, {"name", name}, {"saved_by", stamp.savedBy}, {"saved_at", stamp.savedAt}},
+        id);
+  });
 }
 
 void PlanHandler::loadPlan(MessageReader& r, const json& id) {

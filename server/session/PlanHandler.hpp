@@ -1,12 +1,15 @@
 #pragma once
 // A session's saved plans (docs/protocol.md, "Plans"): `list_plans`, `save_plan` (the poses with
-// who saved them and when) and `load_plan` (the poses back, then their preview).
+// who saved them and when) and `load_plan` (the poses back, then their preview). Listing and
+// saving (a folder scan, an fsync) run on the session's requests, off the network threads; a load
+// sets the poses in the order of the messages, so it reads its one small file where it is handled.
 #include <nlohmann/json.hpp>
 
 #include "session/AnatomicalPoseJson.hpp"
 #include "session/MessageReader.hpp"
 #include "session/PlanStore.hpp"
 #include "session/PreviewScheduler.hpp"
+#include "session/RequestWork.hpp"
 #include "session/SessionChannel.hpp"
 #include "session/SessionState.hpp"
 
@@ -14,8 +17,8 @@ namespace orthosim::server {
 
 class PlanHandler {
  public:
-  PlanHandler(SessionState& state, const SessionChannel& channel, PreviewScheduler& previews, PlanStore& plans,
-              const PoseLimits& limits);
+  PlanHandler(SessionState& state, const SessionChannel& channel, RequestWork& requests, PreviewScheduler& previews,
+              PlanStore& plans, const PoseLimits& limits);
 
   void listPlans(MessageReader& r, const nlohmann::json& id);
   void savePlan(MessageReader& r, const nlohmann::json& id);
@@ -24,6 +27,7 @@ class PlanHandler {
  private:
   SessionState& state_;
   const SessionChannel& channel_;
+  RequestWork& requests_;
   PreviewScheduler& previews_;
   PlanStore& plans_;
   const PoseLimits& limits_;

@@ -13,13 +13,13 @@ PlanningService::PlanningService(PlanningOptions options)
     : options_(std::move(options)),
       lock_(options_.dataDir, options_.redisUrl.empty() ? DataFolderUse::Alone : DataFolderUse::Shared,
             options_.redisUrl.empty() ? "orthosim serve" : "orthosim serve --redis"),
-      cases_(options_.cases, options_.dataDir),
+      cases_(options_.cases, options_.dataDir, options_.modelMemoryBytes),
       localJobs_(options_.fineWorkers, options_.fineQueue, /*niceness=*/10),
       plans_(options_.dataDir / "plans"),
       patients_(options_.dataDir, cases_),
       scans_(options_.dataDir, patients_, options_.scanExpiry, options_.maxStagedScans),
       slots_(options_.maxSessions, options_.idleSlotGrace),
-      pools_(options_.previewThreads) {
+      pools_(options_.previewThreads, options_.background) {
   // Those of writers on other hosts only when alone: a replica or a worker there may be writing them.
   for (const std::string& leftover : removeLeftovers(options_.dataDir, lock_.alone()))
     std::cerr << "orthosim serve: removed " << leftover << ", left by an interrupted write\n";
@@ -68,7 +68,7 @@ nlohmann::json PlanningService::health(const std::string& version) const {
 }
 
 void PlanningService::warmUp(const std::string& caseId) {
-  boost::asio::post(pools_.preview(), [this, caseId] {
+  boost::asio::post(pools_.openings(), [this, caseId] {
     try {
       cases_.model(caseId, Resolution::Coarse);
       std::cerr << "orthosim serve: case " << caseId << " ready\n";
@@ -82,6 +82,7 @@ void PlanningService::shutdown() {
   if (fineJobs_) fineJobs_->shutdown();
   localJobs_.shutdown();
   pools_.stopPreviewsAndFrames();
+  pools_.stopBackground();
 }
 
 }  // namespace orthosim::server

@@ -27,9 +27,13 @@ namespace orthosim::server {
 struct PlanningOptions {
   std::filesystem::path dataDir;  // cases written here, tissue cache, saved plans
   std::vector<CaseEntry> cases;
-  int previewThreads = 2;  // sessions' coarse solves and case openings
-  int fineWorkers = 1;     // fine jobs at once (each uses every core in its factorisations)
-  int fineQueue = 8;       // fine jobs waiting at most
+  int previewThreads = 2;        // sessions' coarse solves (serve: the thread budget)
+  BackgroundThreads background;  // case openings, face fits, exports, disk and Redis requests
+  int fineWorkers = 1;           // fine jobs at once (each on one thread: system/ThreadBudget)
+  int fineQueue = 8;             // fine jobs waiting at most
+  // Fine and band jobs one session may have queued or running: half the queue, so that one
+  // session's batch leaves room for the others'.
+  int maxJobsPerSession = 4;
   // Empty: fine jobs on this machine's pool. "redis://HOST:PORT": on `orthosim worker` processes
   // through Redis Streams (jobs/RedisJobQueue.hpp); the server does not start without it.
   std::string redisUrl;
@@ -38,6 +42,8 @@ struct PlanningOptions {
   std::string replica;
   std::chrono::milliseconds orphanGrace{120000};
   int maxSessions = 32;
+  // Estimated bytes of built case models kept in memory (cases/CaseLibrary): unused ones beyond go.
+  std::size_t modelMemoryBytes = kDefaultModelMemoryMiB << 20;
   // How long a connection without a case keeps its slot when a new connection needs it: from its
   // start, and from its client's last message (session/SessionSlots).
   std::chrono::milliseconds idleSlotGrace{5000};
@@ -47,6 +53,8 @@ struct PlanningOptions {
   // last good preview kept, and no session holds a preview thread for minutes.
   int previewIterations = 100;
   std::chrono::milliseconds previewTime{15000};
+  // What one face fit (plan_from_face) may spend: it stops there with the best poses so far.
+  std::chrono::milliseconds faceFitTime{60000};
   // CT scans staged for the page's import (cases/ScanStore): removed when unused this long; at most
   // this many at once (each holds its files on disk and its volume in memory).
   std::chrono::seconds scanExpiry{1800};
@@ -61,9 +69,9 @@ class PlanningService {
   ~PlanningService();
 
   CaseLibrary& cases() { return cases_; }
-  boost::asio::thread_pool& previewPool() { return pools_.preview(); }
+  RoundRobinExecutor& previewPool() { return pools_.preview(); }
   // One thread draws every session's frames: each session's renderer is used by one thread.
-  boost::asio::thread_pool& renderPool() { return pools_.render(); }
+  RoundRobinExecutor& renderPool() { return pools_.render(); }
   // Fine jobs: on localJobs() or, with redisUrl, on the workers.
   FineJobs& fineJobs() { return *fineJobs_; }
   // This machine's bounded pool: band and fine jobs without redisUrl.
@@ -76,6 +84,12 @@ class PlanningService {
   // Imports run here, one at a time, off the network threads (checking a patient's surfaces takes
   // seconds).
   boost::asio::thread_pool& importPool() { return pools_.import(); }
+  // Below the previews (schedule/ThreadPools): case openings and rebuilds, face fits, exports, and
+  // the disk and Redis requests of sessions (saved plans, listings, job submissions).
+  boost::asio::thread_pool& openingPool() { return pools_.openings(); }
+  boost::asio::thread_pool& faceFitPool() { return pools_.faceFits(); }
+  boost::asio::thread_pool& exportPool() { return pools_.exports(); }
+  boost::asio::thread_pool& requestPool() { return pools_.requests(); }
   ExportStore& exports() { return exports_; }
   const PoseLimits& limits() const { return options_.limits; }
   const PlanningOptions& options() const { return options_; }

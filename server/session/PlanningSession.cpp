@@ -15,17 +15,22 @@ PlanningSession::PlanningSession(PlanningService& service, Send send)
           std::move(send), [this] { return std::shared_ptr<const void>(shared_from_this()); }, state_),
       work_(service.previewPool()),
       frameWork_(service.renderPool()),
+      openingWork_(service.openingPool()),
+      faceFitWork_(service.faceFitPool()),
+      exportWork_(service.exportPool()),
+      requests_(service.requestPool(), channel_),
       frames_(state_, channel_, frameWork_),
       previews_(state_, channel_, work_, frames_, service.options()),
-      exports_(state_, channel_, work_, service.exports(), id_),
-      cases_(state_, channel_, work_, frames_, previews_, service.cases()),
+      exports_(state_, channel_, exportWork_, service.exports(), id_),
+      cases_(state_, channel_, work_, openingWork_, requests_, frames_, previews_, service.cases()),
       poses_(state_, channel_, previews_, service.limits()),
       jobs_(
-          state_, channel_, work_, frames_, exports_,
+          state_, channel_, work_, requests_, frames_, exports_,
           JobServices{service.fineJobs(), service.localJobs(), service.cases(), service.options(), service.redisJobs()},
           id_),
-      plans_(state_, channel_, previews_, service.plans(), service.limits()),
-      faces_(state_, channel_, work_, frames_, previews_, service.limits()) {}
+      plans_(state_, channel_, requests_, previews_, service.plans(), service.limits()),
+      faces_(state_, channel_, work_, faceFitWork_, frames_, previews_, service.limits(),
+             service.options().faceFitTime) {}
 
 PlanningSession::~PlanningSession() { close(); }
 
@@ -48,6 +53,11 @@ void PlanningSession::close() {
   }
   work_.close();
   frameWork_.close();
+  faces_.supersede();
+  openingWork_.close();
+  faceFitWork_.close();
+  exportWork_.close();
+  requests_.close();
   service_.fineJobs().releaseOwner(id_);  // on Redis kept a while for a session that resumes them
   service_.localJobs().cancelOwner(id_);
   service_.exports().dropOwner(id_);  // its download links were on its own page
@@ -121,6 +131,14 @@ void PlanningSession::dispatch(const std::string& type, MessageReader& r, const 
     throw ProtocolError("unknown_type", "/type: unknown message type '" + type + "'; known types: " + known, "/type");
   }
   it->second(*this, r, id);
+  supersedeFaceFit(type);  // once accepted: a refused message changes nothing
+}
+
+void PlanningSession::supersedeFaceFit(const std::string& type) {
+  // plan_from_face supersedes the fit before it itself.
+  static const char* const decidingPoses[] = {"open", "edit_case", "set_poses", "reset", "preview", "load_plan"};
+  for (const char* t : decidingPoses)
+    if (type == t) return faces_.supersede();
 }
 
 }  // namespace orthosim::server

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "schedule/SerialWork.hpp"
+#include "schedule/SessionStrand.hpp"
 #include "session/CaseHandler.hpp"
 #include "session/ExportHandler.hpp"
 #include "session/FaceHandler.hpp"
@@ -20,6 +21,7 @@
 #include "session/PlanningService.hpp"
 #include "session/PoseHandler.hpp"
 #include "session/PreviewScheduler.hpp"
+#include "session/RequestWork.hpp"
 #include "session/SessionChannel.hpp"
 #include "session/SessionState.hpp"
 
@@ -46,13 +48,21 @@ class PlanningSession : public std::enable_shared_from_this<PlanningSession> {
 
  private:
   void dispatch(const std::string& type, MessageReader& r, const nlohmann::json& id);
+  // Messages that decide the poses (or the case) stop a running face fit first.
+  void supersedeFaceFit(const std::string& type);
 
   PlanningService& service_;
   std::string id_;
   SessionState state_;
   SessionChannel channel_;
-  SerialWork work_;       // on the preview threads: openings, previews, face fits, exports
+  SerialWork work_;       // on the preview threads: previews, and what uses the session's model
   SerialWork frameWork_;  // on the render thread; each frame supersedes the one before
+  // Below the previews, each on its pool, in the session's order: building the models of a case,
+  // face fits, exports, and the requests that wait on the disk or Redis.
+  SessionStrand openingWork_;
+  SessionStrand faceFitWork_;
+  SessionStrand exportWork_;
+  RequestWork requests_;
   FrameHandler frames_;
   PreviewScheduler previews_;
   ExportHandler exports_;

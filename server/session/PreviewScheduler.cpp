@@ -164,34 +164,42 @@ void PreviewScheduler::publish(const std::shared_ptr<OpenCase>& c, long long seq
   scheduleDragResponse(c, seq, solved);
 }
 
-// After a converged preview, its linear response for the drag view: a task of its own that a newer
-// preview supersedes (cancelled before its factorisation or its back-substitutions, or dropped
-// while queued), so that it never delays the solve of a newer pose by more than one factorisation.
+// After a converged preview, its linear response for the drag view: a task of its own that waits
+// for at most one newer preview and, once started, is not cancelled by the poses that come, so the
+// drag view follows the converged states while a drag goes on; a newer pose waits at most one
+// response build.
 void PreviewScheduler::scheduleDragResponse(const std::shared_ptr<OpenCase>& c, long long seq, const SimState& state) {
-  work_.submit(
-      [this, keep = channel_.keepAlive(), c, seq, state](const std::atomic<bool>& cancel) {
-        if (cancel) return;
-        SolveControl control;
-        control.cancel = &cancel;
-        try {
-          auto next =
-              std::make_shared<const DragResponse>(*c->model, *c->coarse, c->dragFragments(), state, seq, control);
-          const double seconds = next->seconds();
-          {
-            const std::lock_guard<std::mutex> lock(state_.mutex);
-            c->drag = std::move(next);
-          }
-          channel_.reply({{"type", "drag_ready"}, {"preview", seq}, {"seconds", seconds}}, nullptr);
-        } catch (const ResponseCancelled&) {  // a newer pose came: its preview schedules its own
-        } catch (const std::exception& e) {   // no drag view from this state; previews go on as before
-          {
-            const std::lock_guard<std::mutex> lock(state_.mutex);
-            c->drag.reset();
-          }
-          channel_.reply({{"type", "drag_unavailable"}, {"preview", seq}, {"message", e.what()}}, nullptr);
-        }
-      },
-      SerialWork::Kind::FollowUp);
+  work_.submit(dragResponseTask(c, seq, state), SerialWork::Kind::FollowUp);
+}
+
+void PreviewScheduler::scheduleRestResponse(const std::shared_ptr<OpenCase>& c) {
+  work_.submit(dragResponseTask(c, 0, c->lastGood), SerialWork::Kind::Ordered);
+}
+
+// Cancelled (before its factorisation or its back-substitutions) only when the session closes.
+SerialWork::Body PreviewScheduler::dragResponseTask(const std::shared_ptr<OpenCase>& c, long long seq,
+                                                    const SimState& state) {
+  return [this, keep = channel_.keepAlive(), c, seq, state](const std::atomic<bool>& cancel) {
+    if (cancel) return;
+    SolveControl control;
+    control.cancel = &cancel;
+    try {
+      auto next = std::make_shared<const DragResponse>(*c->model, *c->coarse, c->dragFragments(), state, seq, control);
+      const double seconds = next->seconds();
+      {
+        const std::lock_guard<std::mutex> lock(state_.mutex);
+        c->drag = std::move(next);
+      }
+      channel_.reply({{"type", "drag_ready"}, {"preview", seq}, {"seconds", seconds}}, nullptr);
+    } catch (const ResponseCancelled&) {  // the session closed
+    } catch (const std::exception& e) {   // no drag view from this state; previews go on as before
+      {
+        const std::lock_guard<std::mutex> lock(state_.mutex);
+        c->drag.reset();
+      }
+      channel_.reply({{"type", "drag_unavailable"}, {"preview", seq}, {"message", e.what()}}, nullptr);
+    }
+  };
 }
 
 }  // namespace orthosim::server

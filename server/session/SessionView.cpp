@@ -1,5 +1,6 @@
 #include "session/SessionView.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 
@@ -22,9 +23,16 @@ SessionView::SessionView(std::shared_ptr<const CaseModel> model) : model_(std::m
 SessionView::~SessionView() = default;
 
 void SessionView::postState(const SimState& state, nlohmann::json shows) {
+  const auto now = std::chrono::steady_clock::now();
   const std::lock_guard<std::mutex> lock(mutex_);
+  if (shows.value("state", "") == "linear") {
+    if (lastLinearPosted_ != std::chrono::steady_clock::time_point{})
+      poseIntervalMs_ = std::chrono::duration<double, std::milli>(now - lastLinearPosted_).count();
+    lastLinearPosted_ = now;
+  }
   pendingState_ = state;
   pendingShows_ = std::move(shows);
+  pendingPosted_ = now;
 }
 
 void SessionView::postView(const ViewRequest& request) {
@@ -49,6 +57,7 @@ void SessionView::postBandSurface(const std::string& which) {
 
 void SessionView::create() {
   renderer_ = std::make_unique<render::Renderer>(kDefaultWidth, kDefaultHeight, 0);  // no MSAA: 2x the fps
+  size_ = {kDefaultWidth, kDefaultHeight};
   render::setCase(*renderer_, *model_, render::caseTexture(model_->spec));
   jpeg_ = std::make_unique<render::JpegEncoder>(85);
   restSkin_ = model_->deformedSkin(model_->scene.mesh.rest);
@@ -71,8 +80,10 @@ void SessionView::create() {
 }
 
 void SessionView::applyView(const ViewRequest& v) {
-  if (v.size && (v.size->x() != renderer_->width() || v.size->y() != renderer_->height()))
-    renderer_->resize(v.size->x(), v.size->y());
+  if (v.size) {
+    size_ = *v.size;
+    drawAt(1);
+  }
   if (v.colorMap) options_.colorMap = render::parseColorMap(*v.colorMap);
   if (v.bones) options_.showBones = *v.bones;
   if (v.landmarks) showLandmarks_ = *v.landmarks;
@@ -85,8 +96,26 @@ void SessionView::applyView(const ViewRequest& v) {
   }
   camera_.orbit(v.orbitDeg.x(), v.orbitDeg.y());
   camera_.zoom(v.zoom);
-  const double mmPerPixel = camera_.mmPerPixel(renderer_->height());
+  const double mmPerPixel = camera_.mmPerPixel(size_.y());
   camera_.pan(-v.panPixels.x() * mmPerPixel, v.panPixels.y() * mmPerPixel);  // the face follows the mouse
+}
+
+void SessionView::drawAt(int divisor) {
+  const Eigen::Vector2i size(std::max(1, size_.x() / divisor), std::max(1, size_.y() / divisor));
+  if (size.x() != renderer_->width() || size.y() != renderer_->height()) renderer_->resize(size.x(), size.y());
+}
+
+void SessionView::measureLag(std::chrono::steady_clock::time_point posted, int divisor) {
+  const double lagMs = msSince(posted);
+  double intervalMs = 0;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    intervalMs = poseIntervalMs_;
+  }
+  if (lagMs > intervalMs)
+    lagDivisor_ = std::min(4, 2 * divisor);
+  else if (lagMs < 0.5 * intervalMs)
+    lagDivisor_ = std::max(1, divisor / 2);
 }
 
 Frame SessionView::render() {
@@ -96,10 +125,12 @@ Frame SessionView::render() {
   std::optional<Eigen::VectorXd> difference;
   std::shared_ptr<const BandSkins> band;
   std::optional<std::string> bandSurface;
+  std::chrono::steady_clock::time_point posted;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     state.swap(pendingState_);
     if (state) stateShows_ = std::move(pendingShows_);
+    posted = pendingPosted_;
     std::swap(view, pendingView_);
     difference.swap(pendingDifference_);
     band.swap(pendingBand_);
@@ -135,6 +166,10 @@ Frame SessionView::render() {
   }
   if (band) uploaded_ = uploaded_ == Values::Band ? Values::None : uploaded_;
   applyView(view);
+  const bool linear = state && stateShows_.value("state", "") == "linear" && bandSurface_ == "off";
+  const int divisor = linear ? lagDivisor_ : 1;
+  const bool reduced = divisor > 1;
+  drawAt(divisor);
   // The values of the colour map shown: the band's width, else the coarse-vs-fine difference
   // (zeros until there is one, as before).
   const bool showBand = options_.colorMap == render::ColorMap::Band;
@@ -161,7 +196,9 @@ Frame SessionView::render() {
                 {"bytes", frame.jpeg.size()},
                 {"view", preset_},
                 {"colormap", render::colorMapNames()[static_cast<size_t>(options_.colorMap)]},
-                {"shows", shows_}};
+                {"shows", shows_},
+                {"reduced", reduced}};
+  if (linear) measureLag(posted, divisor);
   return frame;
 }
 

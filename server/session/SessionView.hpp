@@ -2,8 +2,12 @@
 // What one session sees: its own off-screen renderer of the open case, the camera and the frame
 // options. Other threads post the newest solved state and view changes; a frame task on the
 // render thread takes whatever is newest and draws it, so a burst of poses or mouse moves costs
-// one frame, not a backlog.
+// one frame, not a backlog. A drag degrades gracefully: a linear state is drawn at half size while
+// the render thread is behind, i.e. while the last linear frame came later after its pose than
+// the time between the last two poses (slow frames, or other sessions' frames ahead of it), until
+// a half-size one comes within half that time; everything else is drawn at the size asked.
 #include <Eigen/Core>
+#include <chrono>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -25,7 +29,8 @@ namespace orthosim::server {
 
 struct Frame {
   std::vector<unsigned char> jpeg;
-  nlohmann::json info;  // {"width", "height", "render_ms", "encode_ms", "view", "colormap", "shows"}
+  // {"width", "height", "render_ms", "encode_ms", "view", "colormap", "shows", "reduced"}
+  nlohmann::json info;
 };
 
 class SessionView {
@@ -61,11 +66,17 @@ class SessionView {
  private:
   void create();  // the renderer, the case uploaded, the frontal camera
   void applyView(const ViewRequest& v);
+  void drawAt(int divisor);  // the renderer at the size asked, divided by `divisor`
+  // After a linear state was drawn at size_ / divisor: whether the render thread keeps up with the
+  // poses, which sets the divisor of the next linear frame.
+  void measureLag(std::chrono::steady_clock::time_point posted, int divisor);
 
   std::shared_ptr<const CaseModel> model_;
   std::mutex mutex_;  // guards the pending fields
   std::optional<SimState> pendingState_;
   nlohmann::json pendingShows_;
+  std::chrono::steady_clock::time_point pendingPosted_, lastLinearPosted_;
+  double poseIntervalMs_ = 0;                   // between the last two linear states posted
   nlohmann::json shows_ = {{"state", "rest"}};  // render thread: what the drawn state is
   ViewRequest pendingView_;
   std::optional<Eigen::VectorXd> pendingDifference_;
@@ -81,6 +92,10 @@ class SessionView {
   std::string bandSurface_ = "off";
 
   std::unique_ptr<render::Renderer> renderer_;  // render thread from here on
+  Eigen::Vector2i size_;                        // asked; the renderer's may be smaller
+  // Linear states are drawn at size_ / lag divisor: 1, 2 or 4, doubled while the frames lag behind
+  // the poses and halved again once they keep up.
+  int lagDivisor_ = 1;
   std::unique_ptr<render::JpegEncoder> jpeg_;
   render::Camera camera_;
   std::string preset_ = "frontal";

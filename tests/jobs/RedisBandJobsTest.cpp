@@ -1,7 +1,7 @@
 // Band and cohort jobs through Redis Streams (docs/deployment.md "Past one machine"),
 // each test with its own real redis-server on a free port: a band on a worker is the in-process
 // band; cancel reaches a band running on a worker; malformed band and cohort jobs are refused, not
-// run; `bench cohort --redis` gives the in-process figures.
+// run; `bench cohort --redis` gives the in-process figures, and two pinned workers share its round.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -280,6 +280,38 @@ TEST(RedisBandJobs, TheCohortOnWorkersGivesTheInProcessFigures) {
       expectNear(value, b[run]["landmark_error_mm"][name], std::string(run) + "/landmark_error_mm/" + name);
   }
   ASSERT_EQ(a["ratios_fine"].size(), b["ratios_fine"].size());
+}
+
+// `bench cohort --spawn-workers 2 --pin-workers`: each worker on one core, and the round's jobs
+// spread over both (no single consumer, no worker taking the whole round), each counted once.
+TEST(RedisBandJobs, TwoPinnedWorkersEachRunPartOfTheCohortRound) {
+  REQUIRE_REDIS_SERVER();
+  test::RedisTestServer redis;
+  const fs::path dir = fs::path(test::testDataDir()).parent_path() / "redis-cohort-pinned";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string cmd = std::string(ORTHOSIM_CLI) +
+                    " bench cohort --patient M4 --patient M9 --coarse-triangles 300 --fine-triangles 600"
+                    " --reference-triangles 1200 --repeats 1 --sweep-patients 0 --spawn-workers 2 --pin-workers"
+                    " --redis " +
+                    redis.url() + " --data " + (dir / "data").string() + " --json " + (dir / "out.json").string() +
+                    " > " + (dir / "out.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd << "\n" << test::readFile(dir / "out.txt");
+  std::ifstream in(dir / "out.json");
+  const json report = json::parse(in);
+  ASSERT_EQ(report["redis"]["rounds"].size(), 1u) << report["redis"].dump();
+  const json& round = report["redis"]["rounds"][0];
+  EXPECT_EQ(round["pinned"], true);
+  const json& workers = round["breakdown"]["busy_per_worker"];
+  ASSERT_EQ(workers.size(), 2u) << round.dump();
+  int jobs = 0;
+  for (const json& w : workers) {
+    EXPECT_GE(w["jobs"].get<int>(), 1) << round.dump();
+    EXPECT_EQ(w["cores"], 1) << "a pinned worker may run on one core only: " << round.dump();
+    EXPECT_GT(w["busy_s"].get<double>(), 0) << round.dump();
+    jobs += w["jobs"].get<int>();
+  }
+  EXPECT_EQ(jobs, 6) << round.dump();
 }
 
 }  // namespace

@@ -147,6 +147,21 @@ TEST(RedisJobs, AWorkerKilledMidJobIsReplacedAndTheJobIsDoneOnce) {
   EXPECT_EQ(count(ws, "job_failed", job), 0);
 }
 
+// The quota counts a session's jobs on Redis: no worker takes them, so they stay queued.
+TEST(RedisJobs, ASessionsJobBeyondItsQuotaIsRefusedWhileAnothersIsAccepted) {
+  REQUIRE_REDIS_SERVER();
+  test::RedisTestServer redis;
+  test::ServerProcess server({"--redis", redis.url(), "--jobs-per-session", "2"});
+  test::WsTestClient busy(server.port()), other(server.port());
+  openPhantom(busy);
+  openPhantom(other);
+  for (int i = 0; i < 2; ++i) ASSERT_EQ(busy.request({{"type", "confirm"}})["type"], "job_queued");
+  const json third = busy.request({{"type", "confirm"}});
+  EXPECT_EQ(third["error"], "job_quota") << third.dump();
+  EXPECT_NE(third.value("message", "").find("quota of 2"), std::string::npos) << third.dump();
+  EXPECT_EQ(other.request({{"type", "confirm"}})["type"], "job_queued");
+}
+
 TEST(RedisJobs, CancelStopsAJobRunningOnAWorker) {
   REQUIRE_REDIS_SERVER();
   test::RedisTestServer redis;

@@ -121,5 +121,27 @@ TEST_F(PlanFromFaceServer, BadTargetsAreRefusedNamingTheFieldAndThePosesStay) {
   EXPECT_EQ(ws_->request({{"type", "describe"}})["fragments"], before) << "a refused request changes no pose";
 }
 
+// A fit past its time budget stops there and says so (the budget of `serve --face-fit-seconds`).
+TEST(PlanFromFaceBudget, AFitGivenATinyBudgetStopsWithTheBudgetMessage) {
+  test::ServerProcess server({"--face-fit-seconds", "0.001"});
+  test::WsTestClient ws(server.port());
+  ws.request({{"type", "open"}, {"case", "phantom-0"}});
+  ws.waitFor("opened", 120s);
+  ASSERT_EQ(ws.request({{"type", "plan_from_face"},
+                        {"from", "rest"},
+                        {"targets", {{"soft_pogonion", {{"anterior_mm", 3}}}}},
+                        {"locks", kRami}})["type"],
+            "face_fitting");
+  const json outcome = ws.waitFor(
+      [](const json& m) { return m.value("type", "") == "face_plan" || m.value("type", "") == "face_plan_failed"; },
+      120s);
+  const std::string message = outcome.value("message", "");
+  EXPECT_NE(message.find("stopped at its time budget of 0.001 s"), std::string::npos) << outcome.dump();
+  if (outcome["type"] == "face_plan") {
+    EXPECT_EQ(outcome["past_deadline"], true) << outcome.dump();
+    EXPECT_FALSE(outcome["reached"].get<bool>());
+  }
+}
+
 }  // namespace
 }  // namespace orthosim

@@ -4,6 +4,8 @@
 
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <thread>
 
 #include "ServerProcess.hpp"
 #include "WsTestClient.hpp"
@@ -59,6 +61,31 @@ TEST_F(PlanningFrames, TheFirstDragIsDrawnFromTheRestResponse) {
   EXPECT_EQ(linear["shows"]["state"], "linear");
   EXPECT_EQ(linear["shows"]["pose_id"], drag["id"]);
   EXPECT_EQ(linear["shows"]["preview"], 0);
+}
+
+// Sessions take turns on the preview threads: while one session's preview runs to its time budget,
+// another session's small preview is solved on the other thread (with N threads, N-1 others go on).
+TEST(PlanningFairness, OneSessionsPreviewCompletesWhileAnotherRunsAHeavyOne) {
+  test::ServerProcess server({"--preview-iterations", "10000", "--preview-seconds", "20"});
+  test::WsTestClient a(server.port()), b(server.port());
+  for (test::WsTestClient* ws : {&a, &b}) {
+    ws->request({{"type", "open"}, {"case", "phantom-0"}});
+    ws->waitFor("opened", 300s);
+  }
+  const auto outcome = [](const json& m) { return m["type"] == "preview" || m["type"] == "preview_failed"; };
+  // Tissue cannot follow this far within a preview's budget: refused after it.
+  const json heavy = a.request(
+      {{"type", "set_poses"},
+       {"poses", {{"maxilla", {{"anterior_mm", 30}, {"pitch_deg", 30}, {"roll_deg", -30}, {"yaw_deg", 30}}}}}});
+  const json small = b.request({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 0.5}}}}}});
+  EXPECT_EQ(b.waitFor([&](const json& m) { return outcome(m) && m["id"] == small["id"]; }, 120s)["type"], "preview");
+  // Answered in order after whatever the server sent the heavy session before.
+  const json described = a.request({{"type", "describe"}});
+  EXPECT_EQ(described["type"], "case");
+  for (const json& m : a.received())
+    EXPECT_FALSE(outcome(m) && m["id"] == heavy["id"]) << "the heavy preview ended before the small one: " << m.dump();
+  EXPECT_EQ(a.waitFor([&](const json& m) { return outcome(m) && m["id"] == heavy["id"]; }, 120s)["type"],
+            "preview_failed");
 }
 
 // A click on the streamed face picks the skin the last frame shows (picking itself is checked
@@ -192,6 +219,31 @@ TEST_F(PlanningFrames, ADraggedPoseIsDrawnLinearAtOnceThenConverged) {
   const json after = ws_->waitFor([&](const json& m) { return m["type"] == "frame"; });
   EXPECT_EQ(after["shows"]["state"], "converged");
   EXPECT_EQ(after["shows"]["pose_id"], refine["id"]);
+}
+
+// A drag that starts as soon as the case is open: the rest state's drag response is built before
+// any preview, and a converged preview's response is built while the drag goes on, so every pose
+// of the drag is drawn at once (a linear frame) rather than only after the release.
+TEST_F(PlanningFrames, EarlyDragIsDrawnFromItsFirstPose) {
+  const json first = ws_->request({{"type", "set_poses"}, {"poses", {{"maxilla", {{"anterior_mm", 1}}}}}});
+  ws_->waitFor([&](const json& m) { return m["type"] == "preview" && m["id"] == first["id"]; }, 120s);
+  const int poses = 90, firstId = 100000;
+  for (int i = 1; i <= poses; ++i) {  // about 30 poses a second
+    ws_->send({{"type", "set_poses"}, {"id", firstId + i}, {"poses", {{"maxilla", {{"anterior_mm", 1 + 0.02 * i}}}}}});
+    std::this_thread::sleep_for(33ms);
+  }
+  const json last = ws_->waitFor(
+      [&](const json& m) {
+        return (m["type"] == "preview" || m["type"] == "preview_failed") && m["id"] == firstId + poses;
+      },
+      120s);
+  EXPECT_EQ(last["type"], "preview") << last.dump();
+  std::set<int> drawn;
+  for (const json& m : ws_->received())
+    if (m["type"] == "frame" && m["shows"]["state"] == "linear" && m["shows"]["pose_id"].is_number_integer())
+      drawn.insert(m["shows"]["pose_id"].get<int>());
+  std::cout << "early drag: " << drawn.size() << " of " << poses << " poses drawn linear\n";
+  EXPECT_GE(drawn.size(), static_cast<size_t>(poses * 9 / 10));
 }
 
 TEST_F(PlanningFrames, BadViewRequestsAreRefused) {

@@ -94,6 +94,35 @@ TEST(PlanningJobs, SigtermDuringAJobStopsCleanlyAndKeepsSavedPlans) {
     EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "no temporary file left: " << e.path();
 }
 
+// One worker and 8 queue places, 8 jobs per session: one session's 9th job is refused by its quota
+// while the queue still has a place, which another session's job takes.
+TEST(PlanningJobs, NinthJobOfASessionIsRefusedWhileAnothersIsAccepted) {
+  test::ServerProcess server({"--jobs-per-session", "8"});
+  test::WsTestClient busy(server.port()), other(server.port());
+  openPhantom(busy);
+  openPhantom(other);
+  const long long first = busy.request({{"type", "confirm"}})["job"];
+  busy.waitFor([&](const json& m) { return m.value("type", "") == "job_progress" && m["job"] == first; });
+  for (int i = 2; i <= 8; ++i) ASSERT_EQ(busy.request({{"type", "confirm"}})["type"], "job_queued") << "job " << i;
+  const json ninth = busy.request({{"type", "confirm"}});
+  EXPECT_EQ(ninth["type"], "error") << ninth.dump();
+  EXPECT_EQ(ninth["error"], "job_quota");
+  const std::string why = ninth.value("message", "");
+  EXPECT_NE(why.find("quota of 8"), std::string::npos) << why;
+  EXPECT_NE(why.find("cancel"), std::string::npos) << why;
+  const json band = busy.request({{"type", "band"}});
+  EXPECT_EQ(band["error"], "job_quota") << "band jobs count too: " << band.dump();
+  const json others = other.request({{"type", "confirm"}});
+  EXPECT_EQ(others["type"], "job_queued") << others.dump();
+  // Cancelling one frees a place of the quota.
+  busy.request({{"type", "cancel"}, {"job", first}});
+  busy.waitFor([&](const json& m) { return m.value("type", "") == "job_cancelled" && m["job"] == first; }, 30s);
+  ASSERT_TRUE(test::waitUntil([&] { return health(server)["jobs"]["queued"] == 7; }, 30s, 50ms))
+      << "the next job took the worker: " << health(server).dump();
+  const json again = busy.request({{"type", "confirm"}});
+  EXPECT_EQ(again["type"], "job_queued") << again.dump();
+}
+
 // A fine job and a preview solving on their worker threads, for the requests made meanwhile.
 void startSolving(test::WsTestClient& busy) {
   busy.request({{"type", "confirm"}});
@@ -142,7 +171,7 @@ TEST(PlanningJobsPerf, TheServerAnswersWithinASecondWhileSolving) {
 }
 
 TEST(PlanningJobs, TheQueueIsBounded) {
-  test::ServerProcess server;
+  test::ServerProcess server({"--jobs-per-session", "16"});  // the queue's bound, not the session's quota
   test::WsTestClient ws(server.port());
   openPhantom(ws);
   ws.request({{"type", "confirm"}});

@@ -4,6 +4,8 @@
 #include <boost/asio/thread_pool.hpp>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -93,7 +95,7 @@ TEST(SerialWork, AFollowUpYieldsToANewerTaskAndDropsNothing) {
   release = true;
   ASSERT_TRUE(waitUntil([&] { return finished > 0 && work.idle(); }, kDeadline)) << "the work never became idle";
   EXPECT_EQ(newerRan, 1) << "the newer task waiting behind the running one still ran";
-  EXPECT_EQ(followUpRan, 0) << "the follow-up of an overtaken task yields to the newer one";
+  EXPECT_EQ(followUpRan, 1) << "the follow-up of an overtaken task runs after the newer one";
 
   // Without a newer task, the follow-up runs.
   release = false;
@@ -109,7 +111,87 @@ TEST(SerialWork, AFollowUpYieldsToANewerTaskAndDropsNothing) {
   ASSERT_TRUE(waitUntil([&] { return running.load(); }, kDeadline));
   release = true;
   ASSERT_TRUE(waitUntil([&] { return work.idle(); }, kDeadline));
-  EXPECT_EQ(followUpRan, 1);
+  EXPECT_EQ(followUpRan, 2);
+  pool.join();
+}
+
+// A drag sends a pose every few tens of milliseconds: a follow-up (the drag response of a
+// converged preview) that yielded to every one of them was never built. It yields to one.
+TEST(SerialWork, AFollowUpYieldsToOneNewerTaskOnly) {
+  std::mutex m;
+  std::vector<std::string> order;
+  auto log = [&](std::string name) {
+    return [&, name](const std::atomic<bool>& cancel) {
+      const std::lock_guard<std::mutex> l(m);
+      order.push_back(name + (cancel ? " cancelled" : ""));
+    };
+  };
+  std::atomic<bool> running{false}, release{false};
+  boost::asio::thread_pool pool(1);
+  SerialWork work(pool);
+  work.submit(
+      [&](const std::atomic<bool>&) {
+        running = true;
+        (void)waitUntil([&] { return release.load(); }, kDeadline);
+      },
+      SerialWork::Kind::Ordered);
+  ASSERT_TRUE(waitUntil([&] { return running.load(); }, kDeadline)) << "the first task never started";
+  work.submit(log("response"), SerialWork::Kind::FollowUp);
+  work.submit(log("pose 1"), SerialWork::Kind::Newest);  // goes ahead of the response
+  work.submit(log("pose 2"), SerialWork::Kind::Newest);  // replaces pose 1 there
+  work.submit(log("pose 3"), SerialWork::Kind::Newest);  // replaces pose 2 there
+  release = true;
+  ASSERT_TRUE(waitUntil([&] { return work.idle(); }, kDeadline)) << "the work never became idle";
+  ASSERT_EQ(order, (std::vector<std::string>{"pose 3", "response"}));
+
+  // Queued behind a waiting pose, the response yields to it (and to the poses that replace it
+  // while it waits); the poses that come once it runs wait for the response.
+  running = release = false;
+  order.clear();
+  std::atomic<bool> poseRunning{false}, releasePose{false};
+  work.submit(
+      [&](const std::atomic<bool>&) {
+        running = true;
+        (void)waitUntil([&] { return release.load(); }, kDeadline);
+      },
+      SerialWork::Kind::Ordered);
+  ASSERT_TRUE(waitUntil([&] { return running.load(); }, kDeadline));
+  work.submit(log("pose 4"), SerialWork::Kind::Newest);
+  work.submit(log("response"), SerialWork::Kind::FollowUp);  // yields to pose 4, the one waiting
+  work.submit(
+      [&](const std::atomic<bool>& cancel) {
+        poseRunning = true;
+        (void)waitUntil([&] { return releasePose.load() || cancel.load(); }, kDeadline);
+        log("pose 5")(cancel);
+      },
+      SerialWork::Kind::Newest);  // replaces pose 4, ahead of the response
+  release = true;
+  ASSERT_TRUE(waitUntil([&] { return poseRunning.load(); }, kDeadline)) << "pose 5 never started";
+  work.submit(log("pose 6"), SerialWork::Kind::Newest);  // cancels pose 5, behind the response
+  releasePose = true;
+  ASSERT_TRUE(waitUntil([&] { return work.idle(); }, kDeadline));
+  EXPECT_EQ(order, (std::vector<std::string>{"pose 5 cancelled", "response", "pose 6"}));
+  pool.join();
+}
+
+TEST(SerialWork, ARunningFollowUpIsNotCancelledByANewerTask) {
+  std::atomic<bool> running{false}, release{false}, followUpCancelled{false};
+  std::atomic<int> newerRan{0};
+  boost::asio::thread_pool pool(2);
+  SerialWork work(pool);
+  work.submit(
+      [&](const std::atomic<bool>& cancel) {
+        running = true;
+        (void)waitUntil([&] { return release.load() || cancel.load(); }, kDeadline);
+        followUpCancelled = cancel.load();
+      },
+      SerialWork::Kind::FollowUp);
+  ASSERT_TRUE(waitUntil([&] { return running.load(); }, kDeadline)) << "the follow-up never started";
+  work.submit([&](const std::atomic<bool>& cancel) { newerRan += cancel ? 0 : 1; }, SerialWork::Kind::Newest);
+  release = true;
+  ASSERT_TRUE(waitUntil([&] { return work.idle(); }, kDeadline)) << "the work never became idle";
+  EXPECT_FALSE(followUpCancelled) << "the follow-up was cancelled by the newer task";
+  EXPECT_EQ(newerRan, 1);
   pool.join();
 }
 
