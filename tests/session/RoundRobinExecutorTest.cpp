@@ -44,13 +44,19 @@ SerialWork::Body blocker(std::atomic<bool>& started, std::atomic<bool>& release)
   };
 }
 
+// Holds the executor's thread with a task of its own until `release`, so that what is queued
+// meanwhile waits for its turn.
+void holdTheThread(SerialWork& gate, std::atomic<bool>& started, std::atomic<bool>& release) {
+  gate.submit(blocker(started, release), SerialWork::Kind::Ordered);
+  ASSERT_TRUE(waitUntil([&] { return started.load(); }, kDeadline)) << "the gate never started";
+}
+
 TEST(RoundRobinExecutor, SessionsTakeTurns) {
   Log log;
   std::atomic<bool> started{false}, release{false};
   RoundRobinExecutor executor(1);
   SerialWork gate(executor), a(executor), b(executor);
-  gate.submit(blocker(started, release), SerialWork::Kind::Ordered);
-  ASSERT_TRUE(waitUntil([&] { return started.load(); }, kDeadline)) << "the gate never started";
+  ASSERT_NO_FATAL_FAILURE(holdTheThread(gate, started, release));
   for (int i = 1; i <= 3; ++i) a.submit(log.task("a" + std::to_string(i)), SerialWork::Kind::Ordered);
   for (int i = 1; i <= 3; ++i) b.submit(log.task("b" + std::to_string(i)), SerialWork::Kind::Ordered);
   release = true;
@@ -66,8 +72,7 @@ TEST(RoundRobinExecutor, ANewerTaskRunsInTheTurnOfTheOneItReplaced) {
   std::atomic<bool> started{false}, release{false};
   RoundRobinExecutor executor(1);
   SerialWork gate(executor), a(executor), b(executor);
-  gate.submit(blocker(started, release), SerialWork::Kind::Ordered);
-  ASSERT_TRUE(waitUntil([&] { return started.load(); }, kDeadline)) << "the gate never started";
+  ASSERT_NO_FATAL_FAILURE(holdTheThread(gate, started, release));
   a.submit(log.task("a1"), SerialWork::Kind::Newest);
   b.submit(log.task("b1"), SerialWork::Kind::Newest);
   a.submit(log.task("a2"), SerialWork::Kind::Newest);
@@ -120,8 +125,7 @@ TEST(RoundRobinExecutor, CloseDropsQueuedTasks) {
   std::atomic<bool> started{false}, release{false};
   RoundRobinExecutor executor(1);
   SerialWork gate(executor), a(executor), b(executor);
-  gate.submit(blocker(started, release), SerialWork::Kind::Ordered);
-  ASSERT_TRUE(waitUntil([&] { return started.load(); }, kDeadline)) << "the gate never started";
+  ASSERT_NO_FATAL_FAILURE(holdTheThread(gate, started, release));
   for (int i = 1; i <= 3; ++i) a.submit(log.task("a" + std::to_string(i)), SerialWork::Kind::Ordered);
   b.submit(log.task("b1"), SerialWork::Kind::Ordered);
   a.close();
@@ -136,8 +140,7 @@ TEST(RoundRobinExecutor, StopDropsWaitingTurns) {
   std::atomic<bool> started{false}, release{false};
   RoundRobinExecutor executor(1);
   SerialWork gate(executor), a(executor);
-  gate.submit(blocker(started, release), SerialWork::Kind::Ordered);
-  ASSERT_TRUE(waitUntil([&] { return started.load(); }, kDeadline)) << "the gate never started";
+  ASSERT_NO_FATAL_FAILURE(holdTheThread(gate, started, release));
   a.submit(log.task("a1"), SerialWork::Kind::Newest);
   EXPECT_EQ(executor.waiting(), 1u);
   std::thread stopper([&] { executor.stop(); });  // waits for the gate
