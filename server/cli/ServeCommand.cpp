@@ -136,11 +136,7 @@ void addServeLimitOptions(CLI::App& serve, ServeOptions& o) {
   addThreadsOption(serve, o.threads);
   serve.add_option("--fine-workers", o.fineWorkers, "Fine jobs run at once")->check(CLI::Range(1, 16));
   serve.add_option("--max-sessions", o.maxSessions, "Planning sessions open at once")->check(CLI::Range(1, 1024));
-  serve
-      .add_option("--model-memory", o.modelMemoryMiB,
-                  "MiB of built case models kept in memory (an estimate); unused ones beyond go, least recently "
-                  "used first (default 2048)")
-      ->check(CLI::Range(0, 1 << 20));
+  addModelMemoryOption(serve, o.modelMemoryMiB);
   serve
       .add_option("--preview-iterations", o.previewIterations,
                   "Newton iterations one coarse preview may spend (beyond: refused, the last good preview kept)")

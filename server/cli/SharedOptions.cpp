@@ -53,6 +53,14 @@ void addJsonOption(CLI::App& command, std::string& jsonPath) {
   command.add_option("--json", jsonPath, "Also write the figures to this JSON file");
 }
 
+void addModelMemoryOption(CLI::App& command, int& mebibytes) {
+  command
+      .add_option("--model-memory", mebibytes,
+                  "MiB of built case models kept in memory (an estimate); unused ones beyond go, least recently "
+                  "used first (default 2048)")
+      ->check(CLI::Range(0, 1 << 20));
+}
+
 void addThreadsOption(CLI::App& command, int& threads) {
   command
       .add_option("--threads", threads,

@@ -45,6 +45,9 @@ void addRepeatsOption(CLI::App& command, int& repeats, const std::string& descri
 // --json FILE: a machine-readable copy of what the command prints.
 void addJsonOption(CLI::App& command, std::string& jsonPath);
 
+// --model-memory MIB: built case models kept in memory (cases/CaseLibrary), an estimate.
+void addModelMemoryOption(CLI::App& command, int& mebibytes);
+
 // --threads N: the process's thread budget (system/ThreadBudget; 0, the default: the usable cores).
 void addThreadsOption(CLI::App& command, int& threads);
 

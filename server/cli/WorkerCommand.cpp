@@ -79,11 +79,7 @@ void addWorkerCommand(CLI::App& parent) {
   addThreadsOption(*worker, o.threads);
   worker->add_option("--concurrency", o.concurrency, "Jobs at once (default: one per thread of --threads)")
       ->check(CLI::Range(0, 64));
-  worker
-      ->add_option("--model-memory", o.modelMemoryMiB,
-                   "MiB of built case models kept in memory (an estimate); unused ones beyond go, least recently "
-                   "used first (default 2048)")
-      ->check(CLI::Range(0, 1 << 20));
+  addModelMemoryOption(*worker, o.modelMemoryMiB);
   worker
       ->add_option("--visibility-timeout", o.visibilitySeconds,
                    "Seconds after which a job whose worker stopped (died) goes to another worker (default 60)")
