@@ -47,6 +47,7 @@ net::ServerOptions serverOptions(const ServeOptions& options) {
   server.planning.scanExpiry = std::chrono::seconds(options.scanExpirySeconds);
   server.planning.maxStagedScans = options.maxStagedScans;
   server.planning.previewThreads = threadBudget();
+  server.planning.renderThreads = threadBudget();
   server.planning.fineWorkers = options.fineWorkers;
   server.planning.redisUrl = options.redis;
   server.planning.replica =

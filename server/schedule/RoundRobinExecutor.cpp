@@ -45,18 +45,34 @@ std::size_t RoundRobinExecutor::waiting() const {
   return turns_.size();
 }
 
-std::deque<RoundRobinExecutor::Turn>::iterator RoundRobinExecutor::next() {
+std::deque<RoundRobinExecutor::Turn>::iterator RoundRobinExecutor::next(Clock::time_point now,
+                                                                        Clock::time_point& soonest) {
   const bool othersMayStart = threadCount_ == 1 || runningOthers_ < threadCount_ - 1;
-  if (othersMayStart) return turns_.begin();
-  return std::find_if(turns_.begin(), turns_.end(), [](const Turn& t) { return t.urgent(); });
+  soonest = Clock::time_point::max();
+  for (auto it = turns_.begin(); it != turns_.end(); ++it) {
+    const Clock::time_point ready = it->readyAt ? it->readyAt() : Clock::time_point{};
+    if (ready > now) {
+      soonest = std::min(soonest, ready);
+      continue;
+    }
+    if (othersMayStart || it->urgent()) return it;
+  }
+  return turns_.end();
 }
 
 void RoundRobinExecutor::work() {
   std::unique_lock<std::mutex> lock(mutex_);
   for (;;) {
-    std::deque<Turn>::iterator it;
-    wake_.wait(lock, [&] { return stopped_ || (it = next()) != turns_.end(); });
     if (stopped_) return;
+    Clock::time_point soonest;
+    const auto it = next(Clock::now(), soonest);
+    if (it == turns_.end()) {  // nothing to take now: wait for a change, or for the soonest turn
+      if (soonest == Clock::time_point::max())
+        wake_.wait(lock);
+      else
+        wake_.wait_until(lock, soonest);
+      continue;
+    }
     Turn turn = std::move(*it);
     turns_.erase(it);
     const bool other = !turn.urgent();

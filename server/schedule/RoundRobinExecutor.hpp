@@ -5,6 +5,7 @@
 // and one session's stream of poses never queues ahead of another's. Urgent turns (a preview, a
 // frame) may use every thread; the others (an opening, an export, a drag response) at most all
 // threads but one, so that slow ones never hold every thread a preview could use.
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -17,12 +18,15 @@ namespace orthosim::server {
 
 class RoundRobinExecutor {
  public:
-  // One session's turn: whether its next task is urgent, asked when a thread could take it (the
-  // task may have been replaced meanwhile), and what runs it. `urgent` is called with the
-  // executor's lock held: it may take its session's lock, never call back into the executor.
+  using Clock = std::chrono::steady_clock;
+  // One session's turn: whether its next task is urgent and from when it may start (none: at
+  // once), asked when a thread could take it (the task may have been replaced meanwhile), and what
+  // runs it. `urgent` and `readyAt` are called with the executor's lock held: they may take their
+  // session's lock, never call back into the executor.
   struct Turn {
     std::function<bool()> urgent;
     std::function<void()> run;
+    std::function<Clock::time_point()> readyAt = {};
   };
 
   explicit RoundRobinExecutor(int threads);
@@ -42,9 +46,9 @@ class RoundRobinExecutor {
 
  private:
   void work();
-  // The first waiting turn a thread may take (urgent, or not while others hold their share), or
-  // none. With mutex_ held.
-  std::deque<Turn>::iterator next();
+  // The first waiting turn a thread may take now (ready, and urgent or not while others hold
+  // their share), or none; `soonest`: when the first turn not ready yet will be. With mutex_ held.
+  std::deque<Turn>::iterator next(Clock::time_point now, Clock::time_point& soonest);
 
   const int threadCount_;
   mutable std::mutex mutex_;

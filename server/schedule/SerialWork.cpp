@@ -23,12 +23,12 @@ SerialWork::SerialWork(RoundRobinExecutor& executor) : state_(std::make_shared<S
 
 SerialWork::SerialWork(boost::asio::thread_pool& pool) : state_(std::make_shared<State>()) { state_->pool = &pool; }
 
-void SerialWork::submit(Body body, Kind kind) {
+void SerialWork::submit(Body body, Kind kind, RoundRobinExecutor::Clock::time_point notBefore) {
   bool newTurn = false;
   {
     const std::lock_guard<std::mutex> lock(state_->mutex);
     if (state_->closed) return;
-    Task task{std::move(body), kind};
+    Task task{std::move(body), kind, false, notBefore};
     if (kind == Kind::Newest)
       queueNewest(*state_, std::move(task));
     else if (kind == Kind::FollowUp)
@@ -81,8 +81,12 @@ void SerialWork::takeTurn(const std::shared_ptr<State>& state) {
       const std::lock_guard<std::mutex> lock(state->mutex);
       return !state->queue.empty() && state->queue.front().kind == Kind::Newest;
     };
-    state->executor->enqueue({urgent, [state] { runNext(state); }});
-  } else {
+    const auto readyAt = [state] {
+      const std::lock_guard<std::mutex> lock(state->mutex);
+      return state->queue.empty() ? RoundRobinExecutor::Clock::time_point{} : state->queue.front().notBefore;
+    };
+    state->executor->enqueue({urgent, [state] { runNext(state); }, readyAt});
+  } else {  // a plain pool starts what it is given: no task there names a start time
     boost::asio::post(*state->pool, [state] { runNext(state); });
   }
 }

@@ -13,7 +13,9 @@
 //   and a newer pose waits at most one response build. A newer FollowUp replaces a queued one (its
 //   state is the newer); none is dropped for a Newest, since the task it follows up may have been
 //   overtaken by a newer pose while it ran.
-// Urgent, on the executor: a Newest task next.
+// Urgent, on the executor: a Newest task next. A task may name a time before which it does not
+// start (on the executor: its session's turn waits, other sessions' go ahead); a newer Newest
+// that replaces it brings its own.
 #include <atomic>
 #include <boost/asio/thread_pool.hpp>
 #include <deque>
@@ -33,7 +35,7 @@ class SerialWork {
   explicit SerialWork(RoundRobinExecutor& executor);
   explicit SerialWork(boost::asio::thread_pool& pool);
 
-  void submit(Body body, Kind kind);
+  void submit(Body body, Kind kind, RoundRobinExecutor::Clock::time_point notBefore = {});
   // Cancels the running task, drops the queued ones and refuses new ones (the session closed).
   void close();
   bool idle() const;
@@ -43,6 +45,7 @@ class SerialWork {
     Body body;
     Kind kind = Kind::Ordered;
     bool yielded = false;  // a FollowUp a Newest went ahead of
+    RoundRobinExecutor::Clock::time_point notBefore{};
   };
   struct State;
   static void queueNewest(State& state, Task task);

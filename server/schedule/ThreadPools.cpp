@@ -8,8 +8,9 @@ namespace {
 std::size_t atLeastOne(int threads) { return static_cast<std::size_t>(std::max(1, threads)); }
 }  // namespace
 
-ThreadPools::ThreadPools(int previewThreads, BackgroundThreads background)
+ThreadPools::ThreadPools(int previewThreads, BackgroundThreads background, int renderThreads)
     : preview_(previewThreads),
+      render_(renderThreads),
       openings_(atLeastOne(background.openings)),
       faceFits_(atLeastOne(background.faceFits)),
       exports_(atLeastOne(background.exports)),

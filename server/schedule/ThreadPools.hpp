@@ -1,6 +1,7 @@
 #pragma once
-// The server's thread pools, shared by every session: sessions' coarse solves, the one thread that
-// draws every session's frames (a session's renderer is used by one thread), and patient imports,
+// The server's thread pools, shared by every session: sessions' coarse solves, the threads that
+// draw the sessions' frames (a session's frames one at a time: its renderer is used by one thread
+// at a time, which binds its context for each frame), and patient imports,
 // one at a time, off the network threads. Below the previews, the background pools: each kind of
 // slow work has its own, so that no kind queues behind another (a meshing behind a save, a save
 // behind a face fit) and none holds a preview thread: case openings and rebuilds (meshing: tens of
@@ -23,7 +24,7 @@ struct BackgroundThreads {
 
 class ThreadPools {
  public:
-  explicit ThreadPools(int previewThreads, BackgroundThreads background = {});
+  explicit ThreadPools(int previewThreads, BackgroundThreads background = {}, int renderThreads = 1);
   ~ThreadPools();
 
   // Sessions take turns on both (schedule/RoundRobinExecutor).
@@ -41,7 +42,7 @@ class ThreadPools {
 
  private:
   RoundRobinExecutor preview_;
-  RoundRobinExecutor render_{1};
+  RoundRobinExecutor render_;
   boost::asio::thread_pool import_{1};
   boost::asio::thread_pool openings_;
   boost::asio::thread_pool faceFits_;

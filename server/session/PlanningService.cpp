@@ -19,7 +19,7 @@ PlanningService::PlanningService(PlanningOptions options)
       patients_(options_.dataDir, cases_),
       scans_(options_.dataDir, patients_, options_.scanExpiry, options_.maxStagedScans),
       slots_(options_.maxSessions, options_.idleSlotGrace),
-      pools_(options_.previewThreads, options_.background) {
+      pools_(options_.previewThreads, options_.background, options_.renderThreads) {
   // Those of writers on other hosts only when alone: a replica or a worker there may be writing them.
   for (const std::string& leftover : removeLeftovers(options_.dataDir, lock_.alone()))
     std::cerr << "orthosim serve: removed " << leftover << ", left by an interrupted write\n";

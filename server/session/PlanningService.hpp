@@ -28,6 +28,7 @@ struct PlanningOptions {
   std::filesystem::path dataDir;  // cases written here, tissue cache, saved plans
   std::vector<CaseEntry> cases;
   int previewThreads = 2;        // sessions' coarse solves (serve: the thread budget)
+  int renderThreads = 1;         // sessions' frames (serve: the thread budget)
   BackgroundThreads background;  // case openings, face fits, exports, disk and Redis requests
   int fineWorkers = 1;           // fine jobs at once (each on one thread: system/ThreadBudget)
   int fineQueue = 8;             // fine jobs waiting at most
@@ -70,7 +71,7 @@ class PlanningService {
 
   CaseLibrary& cases() { return cases_; }
   RoundRobinExecutor& previewPool() { return pools_.preview(); }
-  // One thread draws every session's frames: each session's renderer is used by one thread.
+  // Sessions' frames, each session's one at a time: its renderer is used by one thread at a time.
   RoundRobinExecutor& renderPool() { return pools_.render(); }
   // Fine jobs: on localJobs() or, with redisUrl, on the workers.
   FineJobs& fineJobs() { return *fineJobs_; }

@@ -19,6 +19,12 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Poses asked for this close together are a drag: while its frames are drawn from the linear
+// response, the nonlinear preview waits until the poses rest this long, instead of starting for
+// every pose and being cancelled by the next, which kept the preview threads busy beside the
+// render thread's frames. A lone pose (a click, a typed value) starts at once.
+constexpr std::chrono::milliseconds kDragGap{250}, kDragSettle{120};
+
 std::string overBudgetMessage(const std::string& error, const PlanningOptions& budget) {
   return "the coarse solve did not converge: " + error + "; the last good preview is kept (a preview may spend " +
          std::to_string(budget.previewIterations) + " iterations and " +
@@ -76,11 +82,15 @@ void PreviewScheduler::schedule(const json& id) {
   std::shared_ptr<OpenCase> c;
   Poses poses;
   long long seq = 0;
+  const auto now = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point notBefore{};
   {
     const std::lock_guard<std::mutex> lock(state_.mutex);
     c = state_.open;
     poses = state_.poses;
     seq = ++state_.previewSeq;
+    if (c && c->drag && now - state_.previewAsked < kDragGap) notBefore = now + kDragSettle;
+    state_.previewAsked = now;
   }
   work_.submit(
       [this, keep = channel_.keepAlive(), c, seq, poses, id](const std::atomic<bool>& cancel) {
@@ -95,7 +105,7 @@ void PreviewScheduler::schedule(const json& id) {
               id);
         }
       },
-      SerialWork::Kind::Newest);
+      SerialWork::Kind::Newest, notBefore);
 }
 
 void PreviewScheduler::run(const std::shared_ptr<OpenCase>& c, long long seq, const Poses& poses, const json& id,

@@ -4,6 +4,7 @@
 // open case. Owned by the session; its handlers take a reference and lock `mutex` around every
 // read or write of the fields (the session's work and frame threads use them too).
 #include <Eigen/Core>
+#include <chrono>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -52,10 +53,11 @@ struct SessionState {
   std::string opening;  // id of a case being opened
   Poses poses;
   long long previewSeq = 0;
-  std::shared_ptr<const FineResult> fine;  // the newest finished fine job
-  std::shared_ptr<const BandResult> band;  // the newest finished band job
-  std::shared_ptr<SessionView> view;       // of the open case
-  bool renderFailed = false;               // said once; no frames after
+  std::chrono::steady_clock::time_point previewAsked;  // when the newest preview was asked for
+  std::shared_ptr<const FineResult> fine;              // the newest finished fine job
+  std::shared_ptr<const BandResult> band;              // the newest finished band job
+  std::shared_ptr<SessionView> view;                   // of the open case
+  bool renderFailed = false;                           // said once; no frames after
 
   // These lock `mutex`.
   bool hasCase() const;  // open or being opened

@@ -62,10 +62,10 @@ TEST(ServerThreads, StayWithinTheBudgetDuringPreviewsOfSeveralSessionsAndAFineJo
   constexpr int budget = 2, fineWorkers = 1;
   test::ServerProcess server({"--threads", std::to_string(budget), "--fine-workers", std::to_string(fineWorkers)});
   // What the budget allows (docs/threads.md): two network threads (the first is the main thread),
-  // the previews, the render thread, llvmpipe's rasterizers and compute pool (one each per thread
-  // of the budget) and Mesa's shader-cache queue, imports, one thread each for openings, face fits,
-  // exports and requests, the fine workers.
-  const int network = 2, render = 1, llvmpipe = 2 * budget + 1, imports = 1, background = 4;
+  // the previews and the render threads (one each per thread of the budget), llvmpipe's
+  // rasterizers and compute pool (as many) and Mesa's shader-cache queue, imports, one thread each
+  // for openings, face fits, exports and requests, the fine workers.
+  const int network = 2, render = budget, llvmpipe = 2 * budget + 1, imports = 1, background = 4;
   const int allowed = network + budget + render + llvmpipe + imports + background + fineWorkers;
   ThreadSampler sampler(server.pid());
   std::vector<std::unique_ptr<test::WsTestClient>> sessions;

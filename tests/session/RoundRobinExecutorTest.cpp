@@ -51,6 +51,30 @@ void holdTheThread(SerialWork& gate, std::atomic<bool>& started, std::atomic<boo
   ASSERT_TRUE(waitUntil([&] { return started.load(); }, kDeadline)) << "the gate never started";
 }
 
+// A preview that waits for a drag's poses to rest: its session's turn waits, the other session's
+// task goes ahead, and a newer task that replaces it brings its own start time.
+TEST(RoundRobinExecutor, ATaskWaitsForItsStartTimeWhileOtherSessionsGoAhead) {
+  Log log;
+  RoundRobinExecutor executor(1);
+  SerialWork dragging(executor), other(executor);
+  const auto t0 = RoundRobinExecutor::Clock::now();
+  dragging.submit(log.task("early pose"), SerialWork::Kind::Newest, t0 + 10s);
+  const auto settled = RoundRobinExecutor::Clock::now() + 300ms;
+  RoundRobinExecutor::Clock::time_point lastStarted{};
+  const SerialWork::Body last = log.task("last pose");
+  dragging.submit(
+      [&](const std::atomic<bool>& cancel) {
+        lastStarted = RoundRobinExecutor::Clock::now();
+        last(cancel);
+      },
+      SerialWork::Kind::Newest, settled);
+  other.submit(log.task("other session"), SerialWork::Kind::Newest);
+  ASSERT_TRUE(waitUntil([&] { return dragging.idle() && other.idle(); }, kDeadline)) << "never became idle";
+  EXPECT_GE(lastStarted, settled) << "the last pose started before the poses rested";
+  EXPECT_EQ(log.get(), (std::vector<std::string>{"other session", "last pose"}));
+  executor.stop();
+}
+
 TEST(RoundRobinExecutor, SessionsTakeTurns) {
   Log log;
   std::atomic<bool> started{false}, release{false};

@@ -84,7 +84,7 @@ TEST(SerialWork, AFollowUpYieldsToANewerTaskAndDropsNothing) {
   work.submit(
       [&](const std::atomic<bool>&) {
         running = true;
-        waitUntil([&] { return release.load(); }, kDeadline);  // finishes whatever the cancel flag says
+        (void)waitUntil([&] { return release.load(); }, kDeadline);  // finishes whatever the cancel flag says
         work.submit([&](const std::atomic<bool>& cancel) { followUpRan += cancel ? 0 : 1; },
                     SerialWork::Kind::FollowUp);
         ++finished;
@@ -103,7 +103,7 @@ TEST(SerialWork, AFollowUpYieldsToANewerTaskAndDropsNothing) {
   work.submit(
       [&](const std::atomic<bool>&) {
         running = true;
-        waitUntil([&] { return release.load(); }, kDeadline);
+        (void)waitUntil([&] { return release.load(); }, kDeadline);
         work.submit([&](const std::atomic<bool>& cancel) { followUpRan += cancel ? 0 : 1; },
                     SerialWork::Kind::FollowUp);
       },
