@@ -1,12 +1,13 @@
 #pragma once
 // The planning server run inside a bench's own process, on a free loopback port, with the built-in
-// cases in `dataDir`; stopped and joined when it goes out of scope.
+// cases in `dataDir` and serve's thread budget; stopped and joined when it goes out of scope.
 #include <algorithm>
 #include <filesystem>
 #include <string>
 #include <thread>
 
 #include "net/Server.hpp"
+#include "system/ThreadBudget.hpp"
 
 namespace orthosim::cli {
 
@@ -33,6 +34,8 @@ class BenchServer {
     so.planning.maxSessions = std::max(so.planning.maxSessions, minSessions);
     std::filesystem::create_directories(so.planning.dataDir);
     so.planning.cases = server::builtInCases();
+    so.planning.previewThreads = threadBudget();
+    so.planning.renderThreads = threadBudget();
     return so;
   }
 

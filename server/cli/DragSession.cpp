@@ -83,7 +83,11 @@ void DragSession::onMessage(const json& m, BenchClock::time_point at) {
 }
 
 void DragSession::onFrame(const json& m, BenchClock::time_point at) {
-  if (phase_ == Phase::Dragging) ++figures_.framesDuringDrag;
+  if (phase_ == Phase::Dragging) {
+    ++figures_.framesDuringDrag;
+    figures_.drawMs.push_back(m.value("update_ms", 0.0) + m.value("render_ms", 0.0) + m.value("encode_ms", 0.0));
+    if (m.value("reduced", false)) ++figures_.reducedFrames;
+  }
   const json shows = m.value("shows", json::object());
   const json poseId = shows.value("pose_id", json());
   if (!poseId.is_number_integer()) return;

@@ -38,6 +38,8 @@ struct DragFigures {
   double releaseToPreview = 0;      // release to the converged preview of the last pose
   double releaseToFrame = 0;        // release to the converged frame of the last pose
   double clientCpuSeconds = 0;      // this session's thread, the whole run
+  std::vector<double> drawMs;       // frames during the drag: the server's render plus JPEG encode
+  int reducedFrames = 0;            // frames during the drag drawn smaller because the view lagged
   double framesPerSecond() const { return dragSeconds > 0 ? framesDuringDrag / dragSeconds : 0; }
 };
 

@@ -97,7 +97,9 @@ json sessionJson(const SessionOutcome& o) {
           {"pose_to_frame_s", {{"median", median(f.poseToFrame)}, {"max", maxOf(f.poseToFrame)}}},
           {"release_to_preview_s", f.releaseToPreview},
           {"release_to_frame_s", f.releaseToFrame},
-          {"client_cpu_s", f.clientCpuSeconds}};
+          {"client_cpu_s", f.clientCpuSeconds},
+          {"draw_ms_median", median(f.drawMs)},
+          {"reduced_frames", f.reducedFrames}};
 }
 
 void printSession(int index, const SessionOutcome& o) {
@@ -111,7 +113,8 @@ void printSession(int index, const SessionOutcome& o) {
             << std::setw(10) << f.framesPerSecond() << std::setw(8) << f.poseToFrame.size() << "/" << std::left
             << std::setw(4) << f.posesSent << std::right << std::setprecision(3) << std::setw(10)
             << median(f.poseToFrame) << std::setw(8) << maxOf(f.poseToFrame) << std::setw(11) << f.releaseToPreview
-            << std::setw(9) << f.releaseToFrame << std::setw(8) << f.clientCpuSeconds << "\n";
+            << std::setw(9) << f.releaseToFrame << std::setw(8) << f.clientCpuSeconds << std::setprecision(1)
+            << std::setw(10) << median(f.drawMs) << std::setw(9) << f.reducedFrames << "\n";
 }
 
 // Over the sessions that ran to the end: frames/s (median, worst), every drawn pose's
@@ -148,7 +151,7 @@ json runRound(const SessionsBenchOptions& o, int sessions, const DragSchedule& s
   const std::vector<SessionOutcome> outcomes =
       dragAtOnce(server.port(), "phantom-" + std::to_string(o.phantomVariant), sessions, schedule);
   std::cout << "session  ready(s)  frames  frames/s   drawn   p->f med(s)  max(s)  release->preview(s)  "
-               "->frame(s)  client CPU(s)\n";
+               "->frame(s)  client CPU(s)  draw(ms)  reduced\n";
   json rows = json::array();
   for (size_t i = 0; i < outcomes.size(); ++i) {
     printSession(static_cast<int>(i), outcomes[i]);

@@ -137,6 +137,7 @@ Frame SessionView::render() {
     bandSurface.swap(pendingBandSurface_);
   }
   if (band) band_ = band;
+  const auto tUpdate = std::chrono::steady_clock::now();
   if (state) {  // a new solved state: no band surface over it
     lastState_ = state;
     bandSurface_ = "off";
@@ -183,6 +184,7 @@ Frame SessionView::render() {
     uploaded_ = Values::Difference;
   }
   placeMarkers();
+  const double updateMs = msSince(tUpdate);
   const auto t0 = std::chrono::steady_clock::now();
   renderer_->render(camera_, options_, image_);
   const double renderMs = msSince(t0);
@@ -191,6 +193,7 @@ Frame SessionView::render() {
   jpeg_->encode(image_, frame.jpeg);
   frame.info = {{"width", renderer_->width()},
                 {"height", renderer_->height()},
+                {"update_ms", updateMs},
                 {"render_ms", renderMs},
                 {"encode_ms", msSince(t1)},
                 {"bytes", frame.jpeg.size()},
