@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <variant>
 
@@ -19,6 +20,7 @@
 #include "scene/SceneFields.hpp"
 #include "scene/SurfaceTissue.hpp"
 #include "scene/TissueCache.hpp"
+#include "system/FileLock.hpp"
 
 namespace orthosim {
 namespace {
@@ -147,51 +149,8 @@ CaseTissue volumeTissue(const CaseSpec& spec, const CaseTissueOptions& o) {
   return t;
 }
 
-}  // namespace
-
-std::string defaultCacheDir() {
-  if (const char* d = std::getenv("ORTHOSIM_CACHE"); d && *d) return d;
-  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return (fs::path(d) / "orthosim").string();
-  if (const char* d = std::getenv("HOME"); d && *d) return (fs::path(d) / ".cache" / "orthosim").string();
-  return (fs::temp_directory_path() / "orthosim-cache").string();
-}
-
-std::string caseTissueKey(const CaseSpec& spec, Resolution resolution) {
-  Hash h;
-  h.text(kSurfaceTissueVersion);
-  h.text(resolutionName(resolution));
-  h.number(spec.meshing.skinTriangles(resolution));
-  h.number(spec.meshing.maxRadiusEdgeRatio);
-  for (const CaseRefine& r : spec.meshing.refine) {
-    for (int i = 0; i < 3; ++i) h.number(r.center[i]);
-    h.number(r.radius);
-    h.number(r.density);
-  }
-  h.file(spec.skin, "tissue.skin");
-  for (const auto& c : spec.cavities) h.file(c, "tissue.cavities");
-  for (const CaseBone& b : spec.bones) h.file(b.surface, "bones." + b.name);
-  std::ostringstream s;
-  s << std::hex << std::setw(16) << std::setfill('0') << h.h;
-  return s.str();
-}
-
-CaseTissue buildCaseTissue(const CaseSpec& spec, Resolution resolution, const CaseTissueOptions& o) {
-  const auto t0 = Clock::now();
-  if (spec.isVolume()) {
-    CaseTissue t = volumeTissue(spec, o);
-    t.seconds = since(t0);
-    return t;
-  }
-  std::string cachePath;
-  if (!o.cacheDir.empty()) {
-    cachePath = (fs::path(o.cacheDir) / (caseTissueKey(spec, resolution) + ".tissue")).string();
-    if (std::optional<CaseTissue> cached = readTissueCache(cachePath)) {
-      cached->fromCache = true;
-      cached->seconds = since(t0);
-      say(*cached, o, std::string("tissue: ") + resolutionName(resolution) + " model read from the cache " + cachePath);
-      return std::move(*cached);
-    }
-  }
+// The case's surfaces meshed into tetrahedra at `resolution` (TetGen), each bone's bonded nodes found.
+CaseTissue meshCaseTissue(const CaseSpec& spec, Resolution resolution, const CaseTissueOptions& o) {
   CaseTissue t;
   SurfaceTissueInput in;
   in.envelope = readSurface(spec, spec.skin, "tissue.skin", SurfaceRole::Skin, t, o);
@@ -232,13 +191,80 @@ CaseTissue buildCaseTissue(const CaseSpec& spec, Resolution resolution, const Ca
   say(t, o, std::string("tissue (") + resolutionName(resolution) + "): " + qualityLine(t.quality));
   for (size_t b = 0; b < spec.bones.size(); ++b)
     say(t, o, spec.bones[b].name + ": " + std::to_string(t.boneNodes[b].size()) + " bonded nodes on its interface");
+  return t;
+}
+
+// The tissue cached under `cachePath`, or nothing (a miss, a damaged or older entry).
+std::optional<CaseTissue> readCached(const std::string& cachePath, Resolution resolution, const CaseTissueOptions& o,
+                                     Clock::time_point t0) {
+  std::optional<CaseTissue> cached = readTissueCache(cachePath);
+  if (!cached) return std::nullopt;
+  cached->fromCache = true;
+  cached->seconds = since(t0);
+  say(*cached, o, std::string("tissue: ") + resolutionName(resolution) + " model read from the cache " + cachePath);
+  return cached;
+}
+
+}  // namespace
+
+std::string defaultCacheDir() {
+  if (const char* d = std::getenv("ORTHOSIM_CACHE"); d && *d) return d;
+  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return (fs::path(d) / "orthosim").string();
+  if (const char* d = std::getenv("HOME"); d && *d) return (fs::path(d) / ".cache" / "orthosim").string();
+  return (fs::temp_directory_path() / "orthosim-cache").string();
+}
+
+std::string caseTissueKey(const CaseSpec& spec, Resolution resolution) {
+  Hash h;
+  h.text(kSurfaceTissueVersion);
+  h.text(resolutionName(resolution));
+  h.number(spec.meshing.skinTriangles(resolution));
+  h.number(spec.meshing.maxRadiusEdgeRatio);
+  for (const CaseRefine& r : spec.meshing.refine) {
+    for (int i = 0; i < 3; ++i) h.number(r.center[i]);
+    h.number(r.radius);
+    h.number(r.density);
+  }
+  h.file(spec.skin, "tissue.skin");
+  for (const auto& c : spec.cavities) h.file(c, "tissue.cavities");
+  for (const CaseBone& b : spec.bones) h.file(b.surface, "bones." + b.name);
+  std::ostringstream s;
+  s << std::hex << std::setw(16) << std::setfill('0') << h.h;
+  return s.str();
+}
+
+CaseTissue buildCaseTissue(const CaseSpec& spec, Resolution resolution, const CaseTissueOptions& o) {
+  const auto t0 = Clock::now();
+  if (spec.isVolume()) {
+    CaseTissue t = volumeTissue(spec, o);
+    t.seconds = since(t0);
+    return t;
+  }
+  if (o.cacheDir.empty()) {
+    CaseTissue t = meshCaseTissue(spec, resolution, o);
+    t.seconds = since(t0);
+    return t;
+  }
+  const std::string cachePath = (fs::path(o.cacheDir) / (caseTissueKey(spec, resolution) + ".tissue")).string();
+  if (std::optional<CaseTissue> cached = readCached(cachePath, resolution, o, t0)) return std::move(*cached);
+  // One meshing per key: a thread or process (a worker beside another) that finds the same tissue
+  // being meshed waits for it and reads the result, instead of meshing the same surfaces beside it.
+  std::optional<FileLock> meshing;
+  std::string unlocked;
+  try {
+    meshing.emplace(cachePath + ".lock");
+  } catch (const FileLockError& e) {
+    unlocked = e.what();
+  }
+  if (meshing)
+    if (std::optional<CaseTissue> cached = readCached(cachePath, resolution, o, t0)) return std::move(*cached);
+  CaseTissue t = meshCaseTissue(spec, resolution, o);
+  if (!unlocked.empty()) say(t, o, "warning: meshed without the cache's lock: " + unlocked);
   t.seconds = since(t0);
-  if (!cachePath.empty()) {
-    try {
-      writeTissueCache(cachePath, t);
-    } catch (const std::exception& e) {
-      say(t, o, std::string("warning: tissue cache not written: ") + e.what());
-    }
+  try {
+    writeTissueCache(cachePath, t);
+  } catch (const std::exception& e) {
+    say(t, o, std::string("warning: tissue cache not written: ") + e.what());
   }
   return t;
 }

@@ -59,6 +59,7 @@ CohortJobTiming jobTiming(const json& reply) {
   t.consumer = reply.value("consumer", std::string());
   t.cores = reply.value("worker_cores", 0);
   t.busySeconds = reply.value("busy_s", 0.0);
+  t.caseSeconds = reply.value("case_s", 0.0);
   t.buildSeconds = reply.value("build_s", 0.0);
   t.cpuSeconds = reply.value("cpu_s", 0.0);
   t.startedAt = reply.value("started_at_s", 0.0);
@@ -116,9 +117,12 @@ std::map<std::string, CohortPatientRuns> runCohortOnRedis(const server::RedisAdd
   std::map<std::string, Pending> pending;  // job name -> what it is
   std::map<std::string, CohortPatientRuns> out;
   int n = 0;
-  // The references first (the longest), so that the last jobs to start are short ones.
-  for (const char* run : {"reference", "fine", "coarse"})
-    for (const CohortPatient& p : patients) {
+  // Patient by patient, each patient's longest run first, so that the last jobs to start are short
+  // ones, and jobs that mesh the same tissue (the phantom patients of one variant share their meshes
+  // at each resolution) start one after another: a worker then reads the mesh another made instead
+  // of waiting for it (or meshing it beside it).
+  for (const CohortPatient& p : patients)
+    for (const char* run : {"reference", "fine", "coarse"}) {
       server::JobMessage m;
       m.job = benchId + "-" + std::to_string(++n);
       m.kind = server::JobKind::cohort;
@@ -184,8 +188,10 @@ std::map<std::string, CohortPatientRuns> runCohortOnRedis(const server::RedisAdd
         fs::remove(file);
         timing.readSeconds = epochSeconds() - timing.doneAt;
         if (timings) timings->push_back(timing);
-        std::printf("  %s %s done on a worker: solve %.3f s (%d pending)\n", job.patient.c_str(), job.run.c_str(),
-                    o.run.solveSeconds, static_cast<int>(pending.size()));
+        std::printf(
+            "  %s %s done on %s: case %.1f s, build %.1f s, solve %.3f s, busy %.1f s, CPU %.1f s (%d pending)\n",
+            job.patient.c_str(), job.run.c_str(), timing.consumer.c_str(), timing.caseSeconds, timing.buildSeconds,
+            o.run.solveSeconds, timing.busySeconds, timing.cpuSeconds, static_cast<int>(pending.size()));
         std::fflush(stdout);
         if (job.run == "reference") {
           runs.reference = std::move(o.run);

@@ -32,6 +32,7 @@ struct CohortJobTiming {
   std::string consumer;     // the worker's consumer that ran it
   int cores = 0;            // the cores the worker may run on (its affinity)
   double busySeconds = 0;   // on the worker: the case checked, the model built, solved, result written
+  double caseSeconds = 0;   // of which the patient's case checked (and written when the worker had none)
   double buildSeconds = 0;  // of which the model's build (meshing or the tissue cache)
   double cpuSeconds = 0;    // the worker's CPU time meanwhile (less than busy: it waited for a core)
   double startedAt = 0;     // when the worker started it, seconds since the epoch (the worker's clock)

@@ -7,7 +7,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
+#include <thread>
 
 #include "contact/RigidSurface.hpp"
 #include "eval/LandmarkError.hpp"
@@ -154,6 +156,22 @@ TEST_F(PhantomCase, ASecondOpenReadsTheCacheAndGivesTheSameModel) {
   other.meshing.coarseSkinTriangles += 1;
   EXPECT_NE(caseTissueKey(other, Resolution::Coarse), caseTissueKey(spec(), Resolution::Coarse));
   EXPECT_NE(caseTissueKey(spec(), Resolution::Fine), caseTissueKey(spec(), Resolution::Coarse));
+}
+
+// Two builds of one tissue at once (two workers given two patients of one phantom): one meshes, the
+// other waits for it and reads the cache instead of meshing the same surfaces beside it.
+TEST_F(PhantomCase, TwoBuildsOfOneTissueAtOnceMeshItOnce) {
+  const std::string cache = (dir() / "cache-at-once").string();
+  std::optional<CaseTissue> a, b;
+  std::thread other([&] { a = buildCaseTissue(spec(), Resolution::Coarse, {cache}); });
+  b = buildCaseTissue(spec(), Resolution::Coarse, {cache});
+  other.join();
+  ASSERT_TRUE(a && b);
+  EXPECT_NE(a->fromCache, b->fromCache) << "meshed " << (a->fromCache ? 0 : 1) + (b->fromCache ? 0 : 1)
+                                        << " times; once is enough";
+  EXPECT_EQ(a->mesh.rest, b->mesh.rest);
+  EXPECT_EQ(a->mesh.tets, b->mesh.tets);
+  EXPECT_EQ(a->boneNodes, b->boneNodes);
 }
 
 // How fast (label perf): reading the tissue from the cache takes a fraction of meshing it.
