@@ -148,6 +148,7 @@ void CaseHandler::opened(const std::shared_ptr<OpenCase>& c, double seconds, con
     state_.open = c;
     state_.opening.clear();
     state_.poses.clear();
+    ++state_.posesChanged;
     state_.view = std::make_shared<SessionView>(c->coarse);
     opened = caseJson(*c);
   }

@@ -161,6 +161,7 @@ void FaceHandler::takeFaceFit(const std::shared_ptr<OpenCase>& c, FaceFitResult 
     const std::lock_guard<std::mutex> lock(state_.mutex);
     if (state_.open != c) return;
     state_.poses = result.poses;
+    ++state_.posesChanged;
     for (const auto& [name, pose] : state_.poses)
       for (std::string& w : unusualPoseWarnings(name, pose)) warnings.push_back(std::move(w));
   }

@@ -55,17 +55,30 @@ void PlanHandler::loadPlan(MessageReader& r, const json& id) {
   const std::string name = r.string("name");
   const bool previewAfter = r.boolean("preview", true);
   r.rejectUnknown();
-  const Poses loaded = readSavedPlan(
-      plans_.load(c->id, name), name, [&](MessageReader poses) { return c->readPoses(poses, limits_); },
-      osteotomySetJson(c->coarse->spec.cuts));
-  json poses;
+  long long changedBefore = 0;
   {
     const std::lock_guard<std::mutex> lock(state_.mutex);
-    state_.poses = loaded;
-    poses = state_.posesJson();
+    changedBefore = state_.posesChanged;
   }
-  channel_.reply({{"type", "loaded"}, {"case", c->id}, {"name", name}, {"poses", std::move(poses)}}, id);
-  if (previewAfter) previews_.schedule(id);
+  requests_.submit(id, [this, c, name, previewAfter, changedBefore, id] {
+    const Poses loaded = readSavedPlan(
+        plans_.load(c->id, name), name, [&](MessageReader poses) { return c->readPoses(poses, limits_); },
+        osteotomySetJson(c->coarse->spec.cuts));
+    json poses;
+    {
+      const std::lock_guard<std::mutex> lock(state_.mutex);
+      // Poses set after this message came (a drag, another case) are newer than the plan: they stay.
+      if (state_.open != c || state_.posesChanged != changedBefore)
+        throw ProtocolError("superseded", "plan '" + name +
+                                              "' not loaded: the poses changed while it was read (the newer "
+                                              "poses stay); load it again to use it");
+      state_.poses = loaded;
+      ++state_.posesChanged;
+      poses = state_.posesJson();
+    }
+    channel_.reply({{"type", "loaded"}, {"case", c->id}, {"name", name}, {"poses", std::move(poses)}}, id);
+    if (previewAfter) previews_.schedule(id);
+  });
 }
 
 }  // namespace orthosim::server

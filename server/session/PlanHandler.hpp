@@ -1,8 +1,9 @@
 #pragma once
 // A session's saved plans (docs/protocol.md, "Plans"): `list_plans`, `save_plan` (the poses with
-// who saved them and when) and `load_plan` (the poses back, then their preview). Listing and
-// saving (a folder scan, an fsync) run on the session's requests, off the network threads; a load
-// sets the poses in the order of the messages, so it reads its one small file where it is handled.
+// who saved them and when) and `load_plan` (the poses back, then their preview). All three run on
+// the session's requests, off the network threads (a folder scan, an fsync, a file read); a load
+// whose poses changed meanwhile (a drag, another case) is refused, so newer poses are never
+// overwritten by an older request.
 #include <nlohmann/json.hpp>
 
 #include "session/AnatomicalPoseJson.hpp"

@@ -20,6 +20,7 @@ void PoseHandler::setPoses(MessageReader& r, const json& id) {
   {
     const std::lock_guard<std::mutex> lock(state_.mutex);
     for (const auto& [name, pose] : changed) state_.poses[name] = pose;
+    ++state_.posesChanged;
     poses = state_.posesJson();
     for (const auto& [name, pose] : state_.poses)
       for (std::string& w : unusualPoseWarnings(name, pose)) warnings.push_back(std::move(w));
@@ -45,6 +46,7 @@ void PoseHandler::reset(MessageReader& r, const json& id) {
       state_.poses.erase(*fragment);
     else
       state_.poses.clear();
+    ++state_.posesChanged;
     poses = state_.posesJson();
   }
   channel_.reply({{"type", "poses"}, {"poses", std::move(poses)}}, id);

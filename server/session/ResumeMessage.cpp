@@ -36,17 +36,20 @@ void JobHandler::resume(MessageReader& r, const json& id) {
     }
     return fineCallbacks(c, poses);
   };
-  services_.fineJobs.resume(former, owner_, c->id, callbacksFor, [&](const std::vector<ResumedJob>& jobs) {
-    json list = json::array();
-    for (const ResumedJob& j : jobs) {
-      json item = {{"job", j.job}, {"state", j.state}};
-      if (!j.progress.is_null()) {
-        item["phase"] = j.progress.value("phase", "");
-        item["fraction"] = j.progress.value("fraction", 0.0);
+  // On Redis: round trips to claim the former session's jobs, off the network threads.
+  requests_.submit(id, [this, c, former, callbacksFor, id] {
+    services_.fineJobs.resume(former, owner_, c->id, callbacksFor, [&](const std::vector<ResumedJob>& jobs) {
+      json list = json::array();
+      for (const ResumedJob& j : jobs) {
+        json item = {{"job", j.job}, {"state", j.state}};
+        if (!j.progress.is_null()) {
+          item["phase"] = j.progress.value("phase", "");
+          item["fraction"] = j.progress.value("fraction", 0.0);
+        }
+        list.push_back(std::move(item));
       }
-      list.push_back(std::move(item));
-    }
-    channel_.reply({{"type", "resumed"}, {"session", former}, {"case", c->id}, {"jobs", std::move(list)}}, id);
+      channel_.reply({{"type", "resumed"}, {"session", former}, {"case", c->id}, {"jobs", std::move(list)}}, id);
+    });
   });
 }
 

@@ -52,6 +52,7 @@ struct SessionState {
   std::shared_ptr<OpenCase> open;
   std::string opening;  // id of a case being opened
   Poses poses;
+  long long posesChanged = 0;  // raised with every change of `poses`: a plan read meanwhile does not overwrite them
   long long previewSeq = 0;
   std::chrono::steady_clock::time_point previewAsked;  // when the newest preview was asked for
   std::shared_ptr<const FineResult> fine;              // the newest finished fine job

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <thread>
@@ -204,6 +205,52 @@ TEST(PlanningWorkflow, ReconnectAndReloadASavedPlan) {
   EXPECT_EQ(after["poses"], before["poses"]);
   EXPECT_NEAR(after["figures"]["max_skin_displacement_mm"].get<double>(),
               before["figures"]["max_skin_displacement_mm"].get<double>(), 1e-3);
+}
+
+// load_plan reads its file off the network threads, after the session's earlier requests; a
+// set_poses sent right after it is newer than the plan and must win whichever finishes first:
+// either the plan is loaded and then moved, or the load is refused as superseded. Saves (each
+// synced to disk) queued ahead of the load let the set_poses come first in most rounds.
+TEST(PlanningWorkflow, PosesSetRightAfterALoadAreNeverOverwrittenByThePlan) {
+  test::ServerProcess server;
+  test::WsTestClient ws(server.port());
+  openPhantom(ws);
+  const std::string name = uniqueName("saved-three");
+  ASSERT_EQ(ws.request(advance(3))["type"], "poses");
+  ASSERT_EQ(ws.request({{"type", "save_plan"}, {"name", name}})["type"], "saved");
+  int loaded = 0, superseded = 0;
+  for (int k = 1; k <= 20; ++k) {
+    const std::string loadId = "load-" + std::to_string(k), moveId = "move-" + std::to_string(k);
+    for (int n = 0; n < 3; ++n)
+      ws.send(
+          {{"type", "save_plan"}, {"name", name + "-copy"}, {"replace", true}, {"id", "save-" + std::to_string(n)}});
+    ws.send({{"type", "load_plan"}, {"name", name}, {"preview", false}, {"id", loadId}});
+    json move = advance(0.25 * k);
+    move["preview"] = false;
+    move["id"] = moveId;
+    ws.send(move);
+    json loadReply, moveReply;  // in either order
+    while (loadReply.is_null() || moveReply.is_null()) {
+      const json m = ws.next();
+      if (m.value("id", json()) == loadId) loadReply = m;
+      if (m.value("id", json()) == moveId) moveReply = m;
+    }
+    ASSERT_EQ(moveReply["type"], "poses") << moveReply.dump();
+    if (loadReply["type"] == "loaded") {
+      ++loaded;
+    } else {
+      ASSERT_EQ(loadReply["type"], "error") << loadReply.dump();
+      ASSERT_EQ(loadReply["error"], "superseded") << loadReply.dump();
+      ++superseded;
+    }
+    json ask = {{"type", "set_poses"}, {"poses", json::object()}, {"preview", false}};
+    const json now = ws.request(ask);
+    ASSERT_EQ(now["type"], "poses") << now.dump();
+    EXPECT_EQ(now["poses"]["maxilla"]["anterior_mm"], 0.25 * k)
+        << "round " << k << ": the plan overwrote the newer pose (load reply " << loadReply.dump() << ")";
+  }
+  EXPECT_EQ(loaded + superseded, 20);
+  std::cout << loaded << " plans loaded before the newer pose, " << superseded << " superseded by it\n";
 }
 
 // The burst is sent at once, faster than any coarse solve: every update after the first arrives
